@@ -1,0 +1,12 @@
+# Every dependency comes from Debian packages (scripts/install-deps); see README "Dependencies".
+find_package(fmt REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(nlohmann_json REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)
+if(SERCON_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(SERCON_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()
