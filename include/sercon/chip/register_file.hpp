@@ -1,0 +1,70 @@
+// The chip's 0x00..0x2A control registers: storage that obeys the access rules of the
+// register map, plus hooks through which the chip's units act on writes and supply
+// live values on reads (QEMU/VCML style: registers as data, behaviour in hooks).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "sercon/chip/register_map.hpp"
+#include "sercon/chip/variant.hpp"
+
+namespace sercon::chip {
+
+class RegisterFile {
+ public:
+  // `written` is the raw bus value; `before` the stored value before the write.
+  using WriteHook = std::function<void(std::uint16_t written, std::uint16_t before)>;
+  // Gets the stored value, returns what the bus reads (e.g. a live counter).
+  using ReadHook = std::function<std::uint16_t(std::uint16_t stored)>;
+
+  explicit RegisterFile(Variant variant);
+
+  Variant variant() const { return variant_; }
+
+  // --- the µP's side (bus accesses) -------------------------------------------------
+  // Unused bits read 0 (datasheet 4.1); addresses >= kRegisterCount read 0.
+  std::uint16_t bus_read(std::uint8_t address) const;
+  // RW bits are stored (except bits locked by lock()), W1C bits written 1 are cleared,
+  // R bits and unused bits are ignored (datasheet 4.1); then the write hooks run.
+  // Addresses >= kRegisterCount are ignored.
+  void bus_write(std::uint8_t address, std::uint16_t value);
+
+  // --- the chip's side ----------------------------------------------------------------
+  std::uint16_t value(std::uint8_t address) const { return values_.at(address); }
+  bool bit(std::uint8_t address, std::uint16_t mask) const { return (value(address) & mask) != 0; }
+  // Sets or clears bits whatever their access (status bits, latched interrupts, W1C).
+  void set_bits(std::uint8_t address, std::uint16_t mask, bool on);
+  // Replaces the bits under `mask` with `bits`.
+  void put(std::uint8_t address, std::uint16_t mask, std::uint16_t bits);
+
+  // RW bits under `mask` ignore bus writes while locked (delta spec 2.6.2: ENTMT and PHAS0
+  // while INT_WDOG is set).
+  void lock(std::uint8_t address, std::uint16_t mask, bool locked);
+
+  void on_write(std::uint8_t address, WriteHook hook);
+  void on_read(std::uint8_t address, ReadHook hook);
+  // Any change of a value by the chip's side or the bus calls these (e.g. interrupt
+  // outputs follow INTSTAT & IEN).
+  void on_change(std::function<void(std::uint8_t address)> listener);
+
+  // Table reset values for every register (pins and variant-specific bits: see Chip).
+  void reset();
+
+  const RegisterMasks& masks(std::uint8_t address) const { return masks_.at(address); }
+
+ private:
+  void changed(std::uint8_t address);
+
+  Variant variant_;
+  std::array<RegisterMasks, kRegisterCount> masks_{};
+  std::array<std::uint16_t, kRegisterCount> values_{};
+  std::array<std::uint16_t, kRegisterCount> locked_{};
+  std::array<std::vector<WriteHook>, kRegisterCount> write_hooks_;
+  std::array<ReadHook, kRegisterCount> read_hooks_;
+  std::vector<std::function<void(std::uint8_t)>> change_listeners_;
+};
+
+}  // namespace sercon::chip
