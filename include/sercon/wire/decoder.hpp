@@ -77,6 +77,7 @@ class LineDecoder {
   void emit(std::uint32_t lsb_first_bits, unsigned count);
   void close_frame(std::size_t end_bit, std::size_t frame_bits, FrameError forced);
   void open_frame(std::size_t start_bit);
+  std::size_t emitted_bits() const { return bytes_.size() * 8 + acc_bits_; }
 
   Sink sink_;
   std::size_t pos_ = 0;      // line bits consumed
@@ -92,6 +93,7 @@ class LineDecoder {
   std::vector<std::uint8_t> bytes_;
   std::uint64_t acc_ = 0;  // bits not yet forming a byte, first bit at bit 0
   unsigned acc_bits_ = 0;
+  DecodedFrame frame_;  // reused for every report so its data keeps its capacity
 };
 
 std::vector<DecodedFrame> decode_all(const LineBits& bits);

@@ -1,0 +1,191 @@
+// Line encoder. Stuffing is one table lookup per byte (state = run of 1s); NRZI is done on
+// 64 decoded bits at once with a prefix XOR, since each line level is the XOR of all
+// level changes (0 bits) before it.
+#include "sercon/wire/encoder.hpp"
+
+#include <array>
+#include <bit>
+#include <stdexcept>
+#include <string>
+
+#include "sercon/wire/fcs.hpp"
+
+namespace sercon::wire {
+namespace {
+
+// Entry for (run of 1s before the byte, byte): the stuffed bits in time order, right
+// aligned with the first bit highest (bits 0..9), their count (bits 10..13) and the run
+// after the byte (bits 14..16). A byte yields at most 10 bits (run 4, byte 0xFF).
+constexpr std::array<std::uint32_t, 5 * 256> make_stuff_table() {
+  std::array<std::uint32_t, 5 * 256> table{};
+  for (unsigned run0 = 0; run0 < 5; ++run0) {
+    for (unsigned byte = 0; byte < 256; ++byte) {
+      unsigned run = run0;
+      std::uint32_t out = 0;
+      unsigned count = 0;
+      for (unsigned i = 0; i < 8; ++i) {  // LSB first on the line (sercos-facts §1)
+        const unsigned bit = (byte >> i) & 1u;
+        out = (out << 1) | bit;
+        ++count;
+        run = bit ? run + 1 : 0;
+        if (run == 5) {  // five 1s: insert a 0 (sercos-facts §1)
+          out <<= 1;
+          ++count;
+          run = 0;
+        }
+      }
+      table[run0 * 256 + byte] = out | (count << 10) | (run << 14);
+    }
+  }
+  return table;
+}
+
+constexpr std::array<std::uint32_t, 5 * 256> kStuff = make_stuff_table();
+
+constexpr std::uint64_t kOnes = ~std::uint64_t{0};
+constexpr std::uint64_t kIdlePattern = 0x7F7F7F7F7F7F7F7Full;  // `0 1111111`, MSB first
+
+std::uint64_t top_mask(unsigned n) { return n == 0 ? 0 : kOnes << (64 - n); }
+
+}  // namespace
+
+LineEncoder::LineEncoder(bool initial_level_high) : level_(initial_level_high) {}
+
+void LineEncoder::put_decoded(std::uint64_t msb_first, unsigned count) {
+  const unsigned room = 64 - pending_count_;
+  if (count < room) {
+    pending_ |= msb_first << (room - count);
+    pending_count_ += count;
+    return;
+  }
+  const unsigned rest = count - room;  // bits that do not fit in this word
+  pending_ |= msb_first >> rest;
+  pending_count_ = 64;
+  flush();
+  if (rest != 0) {
+    pending_ = msb_first << (64 - rest);
+    pending_count_ = rest;
+  }
+}
+
+void LineEncoder::flush() {
+  if (pending_count_ == 0) return;
+  // NRZI (sercos-facts §1): a 0 is a level change. Prefix XOR from the MSB turns the
+  // changes into "odd number of changes so far", i.e. the level relative to level_.
+  std::uint64_t x = ~pending_ & top_mask(pending_count_);
+  x ^= x >> 1;
+  x ^= x >> 2;
+  x ^= x >> 4;
+  x ^= x >> 8;
+  x ^= x >> 16;
+  x ^= x >> 32;
+  const std::uint64_t levels = (level_ ? ~x : x) & top_mask(pending_count_);
+  bits_.append(levels, pending_count_);
+  level_ = ((levels >> (64 - pending_count_)) & 1u) != 0;
+  pending_ = 0;
+  pending_count_ = 0;
+}
+
+void LineEncoder::idle(std::size_t bit_count) {
+  while (bit_count > 0) {
+    const unsigned n = bit_count < 64 ? static_cast<unsigned>(bit_count) : 64;
+    const std::uint64_t pattern = std::rotl(kIdlePattern, static_cast<int>(idle_phase_));
+    put_decoded(pattern >> (64 - n), n);
+    idle_phase_ = (idle_phase_ + n) % 8;
+    bit_count -= n;
+  }
+  ones_run_ = 0;
+  flush();
+}
+
+void LineEncoder::flag() {
+  put_decoded(0x7E, 8);  // 0 111111 0: the same read either way round
+  ones_run_ = 0;
+  idle_phase_ = 0;
+  flush();
+}
+
+void LineEncoder::stuff(std::span<const std::uint8_t> bytes) {
+  unsigned run = ones_run_;
+  for (std::uint8_t b : bytes) {
+    const std::uint32_t e = kStuff[run * 256 + b];
+    put_decoded(e & 0x3FFu, (e >> 10) & 0xFu);
+    run = e >> 14;
+  }
+  ones_run_ = run;
+}
+
+void LineEncoder::stuffed_bytes(std::span<const std::uint8_t> bytes) {
+  stuff(bytes);
+  flush();
+}
+
+EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::uint8_t> data) {
+  const std::size_t start = size();
+  put_decoded(0x7E, 8);
+  ones_run_ = 0;
+  Fcs16 fcs;
+  fcs.update(address);
+  fcs.update(data);
+  const std::uint16_t v = fcs.value();
+  const std::uint8_t head[1] = {address};
+  const std::uint8_t tail[2] = {static_cast<std::uint8_t>(v & 0xFFu),
+                                static_cast<std::uint8_t>(v >> 8)};  // low byte first
+  stuff(head);
+  stuff(data);
+  stuff(tail);
+  put_decoded(0x7E, 8);
+  ones_run_ = 0;
+  idle_phase_ = 0;
+  flush();
+  return {start, size()};
+}
+
+EncodedFrame LineEncoder::raw_frame(std::span<const std::uint8_t> body) {
+  const std::size_t start = size();
+  put_decoded(0x7E, 8);
+  ones_run_ = 0;
+  stuff(body);
+  put_decoded(0x7E, 8);
+  ones_run_ = 0;
+  idle_phase_ = 0;
+  flush();
+  return {start, size()};
+}
+
+void LineEncoder::raw_decoded_bits(std::string_view bits) {
+  for (char c : bits) {
+    if (c != '0' && c != '1')
+      throw std::invalid_argument(std::string("LineEncoder::raw_decoded_bits: '") + c +
+                                  "' is not a bit");
+    put_decoded(c == '1' ? 1u : 0u, 1);
+  }
+  ones_run_ = 0;
+  flush();
+}
+
+void LineEncoder::raw_decoded_bits(std::uint64_t bits, unsigned count) {
+  if (count > 64) throw std::invalid_argument("LineEncoder::raw_decoded_bits: count > 64");
+  for (unsigned i = 0; i < count; ++i) put_decoded((bits >> i) & 1u, 1);
+  ones_run_ = 0;
+  flush();
+}
+
+LineBits LineEncoder::take() {
+  LineBits out = std::move(bits_);
+  bits_ = LineBits();
+  return out;
+}
+
+LineBits encode_stream(std::span<const Telegram> telegrams, std::size_t idle_bits_between,
+                       bool initial_level_high) {
+  LineEncoder enc(initial_level_high);
+  enc.idle(idle_bits_between < 8 ? 8 : idle_bits_between);
+  for (const Telegram& t : telegrams) {
+    enc.telegram(t);
+    enc.idle(idle_bits_between);
+  }
+  return enc.take();
+}
+
+}  // namespace sercon::wire

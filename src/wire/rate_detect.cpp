@@ -1,0 +1,77 @@
+// Bit-rate detection from edge intervals. The shortest common interval is one bit (a
+// telegram has `00` somewhere, and fill follows a flag with `0 0`); snap it to a SERCOS
+// rate (sercos-facts §1), then check that the intervals really are whole bits at that
+// rate. If they are not, the capture lacks one-bit intervals: try the next faster rate.
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "sercon/wire/clock_recovery.hpp"
+
+namespace sercon::wire {
+namespace {
+
+constexpr std::size_t kMinIntervals = 8;
+constexpr double kSnapTolerance = 0.10;  // the base interval may be 10% off nominal
+constexpr double kMaxResidual = 0.4;     // |d/T - round(d/T)| for an interval that fits
+
+std::string rate_text(std::int64_t period_ps) {
+  return fmt::format("{:.3f} ns = {:.3f} Mbit/s", static_cast<double>(period_ps) / 1000.0,
+                     1e6 / static_cast<double>(period_ps));
+}
+
+// Intervals that are not a whole number (>= 1) of bits at period t; a few glitches are
+// allowed (one in a thousand).
+bool fits(std::span<const std::int64_t> intervals, std::int64_t t) {
+  std::size_t misfits = 0;
+  for (std::int64_t d : intervals) {
+    const double bits = static_cast<double>(d) / static_cast<double>(t);
+    const double whole = std::round(bits);
+    if (whole < 1.0 || std::abs(bits - whole) > kMaxResidual) ++misfits;
+  }
+  return misfits * 1000 <= intervals.size();
+}
+
+}  // namespace
+
+std::int64_t detect_bit_period(std::span<const std::int64_t> intervals_ps) {
+  if (intervals_ps.size() < kMinIntervals)
+    throw RecoveryError(fmt::format(
+        "clock recovery: {} edge intervals are too few to detect the bit rate (need {}); "
+        "give the bit period",
+        intervals_ps.size(), kMinIntervals));
+  std::vector<std::int64_t> sorted(intervals_ps.begin(), intervals_ps.end());
+  std::sort(sorted.begin(), sorted.end());
+  if (sorted.front() <= 0)
+    throw RecoveryError("clock recovery: edge interval of " + std::to_string(sorted.front()) +
+                        " ps; intervals must be positive");
+  // Shortest common interval: from the 0.1th percentile (ignores rare glitches) up to 1.6x
+  // it, which holds one-bit intervals with up to ±3/8 bit of error but no two-bit ones.
+  const std::int64_t low = sorted[sorted.size() / 1000];
+  const auto first = std::lower_bound(sorted.begin(), sorted.end(), low);
+  const auto last = std::lower_bound(sorted.begin(), sorted.end(), low + low * 3 / 5);
+  const std::int64_t base = *(first + (last - first) / 2);
+
+  std::size_t snapped = std::size(kBitPeriodsPs);
+  for (std::size_t i = 0; i < std::size(kBitPeriodsPs); ++i) {
+    const auto t = static_cast<double>(kBitPeriodsPs[i]);
+    if (std::abs(static_cast<double>(base) - t) <= kSnapTolerance * t) snapped = i;
+  }
+  if (snapped == std::size(kBitPeriodsPs))
+    throw RecoveryError(fmt::format(
+        "clock recovery: the shortest common edge interval is {}, not within {:.0f}% of a "
+        "SERCOS rate (2, 4, 8, 16 Mbit/s); give the bit period",
+        rate_text(base), kSnapTolerance * 100));
+  for (std::size_t i = snapped + 1; i-- > 0;)  // this rate, then faster ones
+    if (fits(intervals_ps, kBitPeriodsPs[i])) return kBitPeriodsPs[i];
+  throw RecoveryError(
+      fmt::format("clock recovery: edge intervals are not whole bit times at {} or any faster "
+                  "SERCOS rate (noise or glitches?); give the bit period",
+                  rate_text(kBitPeriodsPs[snapped])));
+}
+
+}  // namespace sercon::wire
