@@ -1,0 +1,111 @@
+#include "decode_command.hpp"
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "bit_rate.hpp"
+#include "capture_loader.hpp"
+#include "decode_summary.hpp"
+#include "input_error.hpp"
+#include "json_output.hpp"
+#include "sercon/capture/capture_error.hpp"
+#include "sercon/wire/decoder.hpp"
+#include "telegram_classifier.hpp"
+#include "text_output.hpp"
+
+namespace sercon::tools {
+namespace {
+
+DecodeRunInfo run_info(const DecodeOptions& options, const LoadedCapture& capture) {
+  DecodeRunInfo info;
+  info.file = options.file.string();
+  info.format = capture.format;
+  info.bit_period_ps = capture.line.bit_period_ps;
+  info.rate_given = capture.rate_given;
+  info.signal = capture.signal;
+  info.line_bits = capture.line.bits.size();
+  info.unknown_values = capture.unknown_values;
+  return info;
+}
+
+int decode_loaded(const DecodeOptions& options, const LoadedCapture& capture, std::ostream& out,
+                  std::ostream& err) {
+  const DecodeRunInfo info = run_info(options, capture);
+  TelegramClassifier classifier;
+  DecodeSummary summary;
+  if (!options.json) out << text_header(info);
+
+  wire::LineDecoder decoder([&](const wire::DecodedFrame& frame) {
+    const TelegramRow row = classifier.classify(frame, capture.time_from_start_ps(frame.start_bit));
+    summary.add(row);
+    if (options.json) {
+      out << json_row(row).dump() << '\n';
+    } else {
+      out << text_row(row) << '\n';
+    }
+  });
+  decoder.feed(capture.line.bits);
+  decoder.finish();
+
+  if (options.json) {
+    out << json_summary(summary, info).dump() << '\n';
+  } else {
+    out << text_summary(summary, info);
+  }
+  out.flush();
+  if (summary.telegrams() + summary.errors() == 0) {
+    err << "sercon decode: error: no SERCOS frame found in " << info.file << " (" << info.line_bits
+        << " line bits at " << describe_bit_period(info.bit_period_ps)
+        << "): is it a SERCOS line capture, and is the rate right?\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_decode(const DecodeOptions& options, std::ostream& out, std::ostream& err) {
+  try {
+    const LoadedCapture capture = load_capture(options);
+    return decode_loaded(options, capture, out, err);
+  } catch (const std::exception& e) {
+    // CaptureError, RecoveryError and InputError all carry a message for the user;
+    // anything else (out of memory) is reported the same way rather than crashing.
+    err << "sercon decode: error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+void add_decode_command(CLI::App& app) {
+  auto options = std::make_shared<DecodeOptions>();
+  auto format = std::make_shared<std::string>();
+  CLI::App* decode = app.add_subcommand(
+      "decode",
+      "Decode the SERCOS II telegrams on a line capture: one line per telegram (time, kind, "
+      "address, length, data, FCS status, phase of MSTs), then a summary.");
+
+  decode->add_option("FILE", options->file, "Capture file (.bits, .vcd or .sr)")->required();
+  decode
+      ->add_option("--format", *format,
+                   "Capture format: bits (line levels packed MSB first), vcd (one 1-bit "
+                   "signal), sr (sigrok session, one logic channel). Default: from the "
+                   "file extension (.bits/.bin, .vcd, .sr)")
+      ->check(CLI::IsMember({"bits", "vcd", "sr"}));
+  decode->add_option("--rate", options->rate,
+                     "Bit rate: 2M, 4M, 8M or 16M. Required for bits; detected from the "
+                     "capture for vcd and sr when not given");
+  decode->add_option("--signal", options->signal,
+                     "VCD signal (name or scope.name) or sigrok channel to decode. Default: "
+                     "the only 1-bit signal / logic channel");
+  decode->add_flag("--json", options->json,
+                   "JSON Lines: one object per telegram, the last line {\"summary\": ...}");
+
+  decode->callback([options, format] {
+    options->format = capture::parse_format(*format);
+    const int status = run_decode(*options, std::cout, std::cerr);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+}  // namespace sercon::tools
