@@ -17,11 +17,12 @@ std::uint16_t RegisterFile::bus_read(std::uint8_t address) const {
   return static_cast<std::uint16_t>(live & masks_[address].readable);
 }
 
-void RegisterFile::bus_write(std::uint8_t address, std::uint16_t value) {
+void RegisterFile::bus_write(std::uint8_t address, std::uint16_t value, std::uint16_t enabled) {
   if (address >= kRegisterCount) return;
   const RegisterMasks& m = masks_[address];
   const std::uint16_t before = values_[address];
-  const auto writable = static_cast<std::uint16_t>(m.writable & ~locked_[address]);
+  value = static_cast<std::uint16_t>(value & enabled);
+  const auto writable = static_cast<std::uint16_t>(m.writable & ~locked_[address] & enabled);
   std::uint16_t next = static_cast<std::uint16_t>((before & ~writable) | (value & writable));
   next = static_cast<std::uint16_t>(next & ~(value & m.clearable));
   values_[address] = next;

@@ -29,8 +29,10 @@ class RegisterFile {
   std::uint16_t bus_read(std::uint8_t address) const;
   // RW bits are stored (except bits locked by lock()), W1C bits written 1 are cleared,
   // R bits and unused bits are ignored (datasheet 4.1); then the write hooks run.
-  // Addresses >= kRegisterCount are ignored.
-  void bus_write(std::uint8_t address, std::uint16_t value);
+  // Addresses >= kRegisterCount are ignored. `enabled` names the bits the access carries
+  // (0x00FF / 0xFF00 for a byte write): other bits are untouched, and the hooks see them
+  // as 0 in `written`, so a byte write never triggers an action bit of the other byte.
+  void bus_write(std::uint8_t address, std::uint16_t value, std::uint16_t enabled = 0xFFFF);
 
   // --- the chip's side ----------------------------------------------------------------
   std::uint16_t value(std::uint8_t address) const { return values_.at(address); }

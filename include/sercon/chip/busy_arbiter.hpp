@@ -1,0 +1,45 @@
+// BUSYN (datasheet Table 1, 3.5.5/3.5.7; delta spec 2.8): when the µP touches a RAM word
+// that the telegram processor uses in the same MCLK period, BUSYN goes low at once and
+// high again at the end of that MCLK period, so it is never low for more than one MCLK.
+// MCLK periods are [k*T, (k+1)*T) from simulation time 0.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "sercon/sim/scheduler.hpp"
+
+namespace sercon::chip {
+
+class BusyArbiter {
+ public:
+  // `drive_busyn(low)` sets the BUSYN pin.
+  BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period,
+              std::function<void(bool low)> drive_busyn);
+  ~BusyArbiter();
+  BusyArbiter(const BusyArbiter&) = delete;
+  BusyArbiter& operator=(const BusyArbiter&) = delete;
+
+  // The telegram processor uses `word` now (in the current MCLK period).
+  void internal_access(std::uint16_t word);
+  // The µP accesses `word` now. Returns true when it collides and BUSYN goes low.
+  bool host_access(std::uint16_t word);
+  bool busy() const { return busy_; }
+  // BUSYN high, nothing remembered.
+  void reset();
+
+ private:
+  std::int64_t period_index(sim::Time t) const { return t / mclk_period_; }
+  void release();
+
+  sim::Scheduler& scheduler_;
+  sim::Time mclk_period_;
+  std::function<void(bool)> drive_busyn_;
+  std::int64_t words_period_ = -1;    // MCLK period that words_ belongs to
+  std::vector<std::uint16_t> words_;  // words the telegram processor used in it
+  bool busy_ = false;
+  sim::Scheduler::EventId release_event_{};
+};
+
+}  // namespace sercon::chip

@@ -1,0 +1,151 @@
+// The SERCON816 / SERCON410B chip: register file, dual-port RAM, one sim::Signal per pin
+// of datasheet Table 1, the µP bus interface, resets, and the functional units.
+//
+// How a unit plugs in (time base, watchdog, DIV_CLK, CON_CLK, interrupts, ...):
+//  1. Derive from ChipUnit (chip_unit.hpp) and take `Chip&` in the constructor. There,
+//     register RegisterFile hooks (chip.regs().on_write / on_read / on_change) and pin
+//     watchers (chip.pin(Pin::CYC_CLK).watch(...)); keep the Chip& for later.
+//  2. Add one line to Chip::build_units() in src/chip/chip_units.cpp:
+//       add_unit<TimeBase>();
+//     Units are built in that order, after the chip's own hooks, and are told about
+//     resets in that order. Chip::unit<T>() finds a unit by type (e.g. the watchdog
+//     asking the time base for its 1 µs tick).
+//  3. reset(cause) is called at every reset after the registers hold their reset values;
+//     release() when the chip leaves reset (see chip_unit.hpp). Do not schedule events
+//     from the constructor: power-on is a reset + release like any other.
+//  4. Drive output pins with set_output(pin, level), never pin(p).set(): set_output
+//     remembers the level and keeps the pin high-impedance while OUTZ = 1.
+//  5. Time: scheduler().now() in picoseconds; mclk_period() and next_mclk_edge() give
+//     the MCLK grid (edges at k * period from time 0).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#include "sercon/chip/bus.hpp"
+#include "sercon/chip/busy_arbiter.hpp"
+#include "sercon/chip/chip_config.hpp"
+#include "sercon/chip/chip_unit.hpp"
+#include "sercon/chip/dpram.hpp"
+#include "sercon/chip/pins.hpp"
+#include "sercon/chip/register_file.hpp"
+#include "sercon/chip/serial_clock.hpp"
+#include "sercon/chip/test_mode.hpp"
+#include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/signal.hpp"
+
+namespace sercon::chip {
+
+class Chip {
+ public:
+  // Validates `config` (std::invalid_argument), sets the strap pins, builds the units and
+  // runs the power-on reset.
+  Chip(sim::Scheduler& scheduler, const ChipConfig& config);
+  ~Chip();
+  Chip(const Chip&) = delete;
+  Chip& operator=(const Chip&) = delete;
+
+  sim::Scheduler& scheduler() { return scheduler_; }
+  const ChipConfig& config() const { return config_; }
+  Variant variant() const { return config_.variant; }
+  RegisterFile& regs() { return regs_; }
+  const RegisterFile& regs() const { return regs_; }
+  Dpram& ram() { return ram_; }
+  const Dpram& ram() const { return ram_; }
+
+  // --- µP bus ---------------------------------------------------------------------------
+  // One bus cycle as the pins see it (bus.hpp). Throws std::invalid_argument when RAM
+  // and registers are selected at once (a board fault: both would drive D15-0).
+  BusResult bus(const BusCycle& cycle);
+  // Word accesses as the board's µP makes them with the present BUSWIDTH / BYTEDIR pins:
+  // one 16-bit cycle, or two byte cycles (A0 = 0 first) on an 8-bit bus. The value is the
+  // register's or RAM word's logical value. Registers: word_address 0x00..0x3F (0x2B..0x3F
+  // read 0, writes ignored); RAM: word_address < ram().size(). std::out_of_range beyond.
+  std::uint16_t reg_read(std::uint16_t word_address);
+  void reg_write(std::uint16_t word_address, std::uint16_t value);
+  std::uint16_t ram_read(std::uint16_t word_address);
+  void ram_write(std::uint16_t word_address, std::uint16_t value);
+
+  // --- the telegram processor's RAM port (internal side) ------------------------------
+  // Records the word as in use during the present MCLK period (BUSYN for a µP access to
+  // it in that period). `word` must be < ram().size().
+  std::uint16_t tp_ram_read(std::uint16_t word);
+  void tp_ram_write(std::uint16_t word, std::uint16_t value);
+
+  // --- pins -----------------------------------------------------------------------------
+  sim::Signal& pin(Pin p) { return pins_.at(index_of(p)); }
+  const sim::Signal& pin(Pin p) const { return pins_.at(index_of(p)); }
+  // The board drives an input (or a data/address line the chip is not driving).
+  // std::invalid_argument for an output, a line the chip drives now, HighZ on a pin
+  // without pull resistor, MCLK/SCLK (given as frequencies in ChipConfig), TEST = 1.
+  void drive(Pin p, sim::Level level);
+  // The level an input is read as: HighZ resolves through its pull resistor.
+  bool input_high(Pin p) const;
+  // A unit drives an output: while OUTZ = 1 the pin stays HighZ and takes `level` after.
+  void set_output(Pin p, sim::Level level);
+  void set_output(Pin p, bool high) { set_output(p, sim::level_of(high)); }
+
+  // --- reset ----------------------------------------------------------------------------
+  // SWRST (same as writing 0x0002 to register 0x01): reset, then run on at once.
+  void software_reset();
+  // RSTN = 0 or OUTZ = 1: registers held at reset values, register writes ignored.
+  bool in_reset() const { return rstn_low_ || outz_; }
+  bool outputs_off() const { return outz_; }  // OUTZ = 1
+  ResetCause last_reset() const { return last_reset_; }
+
+  // --- clocks and modes -----------------------------------------------------------------
+  sim::Time mclk_period() const { return mclk_period_; }
+  sim::Time next_mclk_edge(sim::Time t) const;  // first MCLK rising edge at or after t
+  // Bit rate (= TxC / RxC frequency) and SCLKO2 / SCLKO4 from pins and register 0x01.
+  // All 0 while OUTZ = 1 (clocks off). The clock outputs are exposed as frequencies; their
+  // Signals are not toggled (64 MHz edges would swamp the scheduler).
+  SerialClocks serial_clocks() const;
+  // Test generator for the serial unit: pins TM0/TM1 or TMODE2-0 (register 0x02 bits 9-11).
+  TestMode test_mode() const;
+
+  // --- units ----------------------------------------------------------------------------
+  template <typename T>
+  T* unit() {
+    for (auto& u : units_) {
+      if (auto* found = dynamic_cast<T*>(u.get())) return found;
+    }
+    return nullptr;
+  }
+
+ private:
+  template <typename T>
+  void add_unit() {
+    static_assert(std::is_base_of_v<ChipUnit, T>);
+    units_.push_back(std::make_unique<T>(*this));
+  }
+  void build_units();  // src/chip/chip_units.cpp: the list of units
+  void watch_pins();
+  void enter_reset(ResetCause cause);
+  void leave_reset();
+  void apply_pin_reset_bits();
+  void refresh_pin_status_bits();
+  void refresh_outputs();
+  void on_sermode_write(std::uint16_t written);
+  BusResult ram_cycle(const BusCycle& cycle, const ByteLanes& lanes);
+  BusResult register_cycle(const BusCycle& cycle, const ByteLanes& lanes);
+  std::uint16_t word_read(const BusCycle& base);
+  void word_write(BusCycle base, std::uint16_t value);
+
+  sim::Scheduler& scheduler_;
+  ChipConfig config_;
+  sim::Time mclk_period_;
+  RegisterFile regs_;
+  Dpram ram_;
+  std::vector<sim::Signal> pins_;          // index == Pin; never resized
+  std::vector<sim::Level> output_levels_;  // what each output drives when OUTZ = 0
+  std::vector<bool> chip_drives_;          // InOut lines the chip drives now
+  BusyArbiter busy_;
+  bool rstn_low_ = false;
+  bool outz_ = false;
+  ResetCause last_reset_ = ResetCause::PowerOn;
+  std::vector<std::unique_ptr<ChipUnit>> units_;
+};
+
+}  // namespace sercon::chip
