@@ -21,9 +21,9 @@ class Dpll {
     const std::int64_t tick = tick_of(t);
     std::size_t bits = 0;
     if (!locked_) {
-      // No phase before the first edge: count the whole bits that fit before it, so
-      // bit boundaries line up with the first edge.
-      bits = static_cast<std::size_t>(tick / 16);
+      // No phase before the first edge: count back from it, bit boundaries lined up with
+      // it, the bits whose mid-point lies after the capture start.
+      bits = static_cast<std::size_t>((tick + 8) / 16);
       out_.anchors.push_back({0, t - static_cast<std::int64_t>(bits) * period_});
       locked_ = true;
     } else {

@@ -32,7 +32,7 @@ struct Edge {
 
 struct RecoveryOptions {
   // The bit period if known (e.g. 62'500 for 16 Mbit/s). Unset: detect it from the
-  // edge-interval histogram and snap to the nearest SERCOS rate within 10%, else throw.
+  // edge-interval histogram and snap to the SERCOS rate within 5%, else throw.
   std::optional<std::int64_t> bit_period_ps;
 };
 

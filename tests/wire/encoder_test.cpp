@@ -1,0 +1,162 @@
+// Encoder: each line-coding rule of sercos-facts §1, checked on the line levels it writes.
+#include "sercon/wire/encoder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "wire_test_util.hpp"
+
+namespace sercon::wire {
+namespace {
+
+using test::decoded_string;
+using test::levels_string;
+
+// sercos-facts §1 (frame, LSB first, stuffing, NRZI, FCS vector FF 00 87 F0): the MST of
+// CP0 worked out by hand, line starting high.
+//   flag            0 1 1 1 1 1 1 0
+//   FF  LSB first   1 1 1 1 1 [0] 1 1 1    a 0 is stuffed after five 1s
+//   00              0 0 0 0 0 0 0 0        (the run of three 1s ends, no stuffing)
+//   87 = 1000 0111  1 1 1 0 0 0 0 1        FCS low byte first
+//   F0 = 1111 0000  0 0 0 0 1 1 1 1        four 1s: no stuffing before the flag
+//   flag            0 1 1 1 1 1 1 0
+// NRZI from level 1, a 0 flips the level, a 1 keeps it:
+//   flag 00000001 | FF 111110000 | 00 10101010 | 87 00010100 | F0 10100000 | flag 11111110
+TEST(Encoder, HandCheckedMstCp0) {
+  LineEncoder enc(true);
+  const std::vector<std::uint8_t> data = {0x00};
+  const EncodedFrame f = enc.telegram(0xFF, data);
+  EXPECT_EQ(levels_string(enc.bits()),
+            "00000001"
+            "111110000"
+            "10101010"
+            "00010100"
+            "10100000"
+            "11111110");
+  EXPECT_EQ(f.start_bit, 0u);
+  EXPECT_EQ(f.end_bit, 49u);
+  EXPECT_FALSE(enc.level());
+}
+
+// sercos-facts §1: bit stuffing — after five consecutive 1s a 0 is inserted, also across
+// byte boundaries and in the FCS; flags are never stuffed.
+TEST(Encoder, StuffsAZeroAfterFiveOnes) {
+  LineEncoder enc(false);
+  const std::vector<std::uint8_t> bytes = {0x1F, 0xF8, 0xE0, 0x03};
+  enc.stuffed_bytes(bytes);
+  // 1F: 11111000 -> 11111 0 000; F8: 00011111 -> 00011111 0; E0 00000111 + 03 11000000:
+  // 00000111 11 -> five 1s across the byte boundary -> 0 after them.
+  EXPECT_EQ(decoded_string(enc.bits(), false),
+            "111110000"
+            "000111110"
+            "00000111"
+            "110000000");
+  LineEncoder flags(false);
+  flags.flag();
+  EXPECT_EQ(decoded_string(flags.bits(), false), "01111110");  // six 1s stay unstuffed
+}
+
+// sercos-facts §1: the stuffing count carries over between stuffed_bytes calls (it is one
+// run of data), and the count of 1s restarts after a 0 or a flag.
+TEST(Encoder, StuffingRunCarriesAcrossCalls) {
+  LineEncoder enc(true);
+  const std::vector<std::uint8_t> first = {0xF0};   // ends in four 1s
+  const std::vector<std::uint8_t> second = {0x01};  // starts with a 1: fifth 1
+  enc.stuffed_bytes(first);
+  enc.stuffed_bytes(second);
+  EXPECT_EQ(decoded_string(enc.bits(), true),
+            "00001111"
+            "1"
+            "0"
+            "0000000");
+}
+
+// sercos-facts §1: NRZI — a 0 is a level change, a 1 keeps the level, from either level.
+TEST(Encoder, NrziZeroChangesOneKeeps) {
+  for (bool start : {false, true}) {
+    LineEncoder enc(start);
+    enc.raw_decoded_bits("0110100");
+    // four 0s: four changes, so the line ends where it started
+    EXPECT_EQ(levels_string(enc.bits()), start ? "0001101" : "1110010");
+    EXPECT_EQ(decoded_string(enc.bits(), start), "0110100");
+    EXPECT_EQ(enc.level(), start);
+  }
+  LineEncoder enc(true);
+  enc.raw_decoded_bits(0b0110, 4);  // bit 0 first: 0 1 1 0
+  EXPECT_EQ(decoded_string(enc.bits(), true), "0110");
+  EXPECT_THROW(enc.raw_decoded_bits("01x"), std::invalid_argument);
+  EXPECT_THROW(enc.raw_decoded_bits(0, 65), std::invalid_argument);
+}
+
+// sercos-facts §1: idle fill changes the line level once every 8 bit times and decodes to
+// `0` then seven `1`s, repeated; here across many calls of odd sizes (the phase is kept).
+TEST(Encoder, IdleFillHasAnEdgeEvery8BitsAcrossCalls) {
+  LineEncoder enc(true);
+  std::size_t total = 0;
+  for (std::size_t n : {1u, 3u, 7u, 8u, 13u, 64u, 65u, 100u, 2u}) {
+    enc.idle(n);
+    total += n;
+  }
+  ASSERT_EQ(enc.size(), total);
+  const std::string d = decoded_string(enc.bits(), true);
+  for (std::size_t i = 0; i < d.size(); ++i) ASSERT_EQ(d[i], i % 8 == 0 ? '0' : '1') << i;
+  const LineBits& b = enc.bits();
+  bool prev = true;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    ASSERT_EQ(b[i] != prev, i % 8 == 0) << "edge only at multiples of 8, bit " << i;
+    prev = b[i];
+  }
+}
+
+// sercos-facts §1: frame = flag, address, data, FCS, flag — and the fill after a telegram
+// restarts with its `0`, so the line keeps changing at least every 8 bits.
+TEST(Encoder, FramePositionsAndFillAfterTelegram) {
+  LineEncoder enc(true);
+  enc.idle(5);
+  const std::vector<std::uint8_t> data = {0x01};
+  const EncodedFrame f = enc.telegram(0xFF, data);
+  EXPECT_EQ(f.start_bit, 5u);
+  EXPECT_EQ(f.end_bit, enc.size());
+  enc.idle(16);
+  const std::string d = decoded_string(enc.bits(), true);
+  EXPECT_EQ(d.substr(f.start_bit, 8), "01111110");
+  EXPECT_EQ(d.substr(f.end_bit - 8, 8), "01111110");
+  EXPECT_EQ(d.substr(f.end_bit), "0111111101111111");
+}
+
+// take() hands over the line and the encoder carries on at the same level.
+TEST(Encoder, TakeKeepsTheLevel) {
+  LineEncoder enc(false);
+  enc.raw_decoded_bits("0");
+  LineBits first = enc.take();
+  EXPECT_EQ(levels_string(first), "1");
+  EXPECT_EQ(enc.size(), 0u);
+  enc.raw_decoded_bits("10");
+  EXPECT_EQ(levels_string(enc.bits()), "10");
+}
+
+// sercos-facts §1 frame; brief: encode_stream puts fill before (at least 8 bits), between
+// and after the telegrams.
+TEST(Encoder, EncodeStreamLayout) {
+  const std::vector<Telegram> ts = {{0xFF, {0x00}}, {0x01, {0x10, 0x20}}};
+  const LineBits line = encode_stream(ts, 0, true);
+  LineEncoder enc(true);
+  enc.idle(8);
+  enc.telegram(ts[0]);
+  enc.telegram(ts[1]);
+  EXPECT_EQ(line, enc.bits());
+  const LineBits spaced = encode_stream(ts, 20, false);
+  LineEncoder enc2(false);
+  enc2.idle(20);
+  enc2.telegram(ts[0]);
+  enc2.idle(20);
+  enc2.telegram(ts[1]);
+  enc2.idle(20);
+  EXPECT_EQ(spaced, enc2.bits());
+}
+
+}  // namespace
+}  // namespace sercon::wire

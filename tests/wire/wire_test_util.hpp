@@ -1,0 +1,72 @@
+// Shared helpers for the wire tests: seeded random telegrams, NRZI-decoded views of a
+// line, and jittered edges/samples made from line bits.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "sercon/wire/clock_recovery.hpp"
+#include "sercon/wire/line_bits.hpp"
+#include "sercon/wire/telegram.hpp"
+
+namespace sercon::wire::test {
+
+inline Telegram random_telegram(std::mt19937_64& rng, std::size_t min_size, std::size_t max_size) {
+  std::uniform_int_distribution<std::size_t> size(min_size, max_size);
+  std::uniform_int_distribution<unsigned> byte(0, 255);
+  Telegram t;
+  t.address = static_cast<std::uint8_t>(byte(rng));
+  t.data.resize(size(rng));
+  for (auto& b : t.data) b = static_cast<std::uint8_t>(byte(rng));
+  return t;
+}
+
+// Line levels as '0'/'1'.
+inline std::string levels_string(const LineBits& bits) {
+  std::string s;
+  for (std::size_t i = 0; i < bits.size(); ++i) s += bits[i] ? '1' : '0';
+  return s;
+}
+
+// NRZI-decoded bits ('1' = no level change) given the level before bit 0.
+inline std::string decoded_string(const LineBits& bits, bool level_before) {
+  std::string s;
+  bool prev = level_before;
+  for (std::size_t i = 0; i < bits.size(); ++i) {
+    s += bits[i] == prev ? '1' : '0';
+    prev = bits[i];
+  }
+  return s;
+}
+
+// Edges of `bits` at bit period `period` from time 0, each moved by uniform random jitter
+// in [-jitter, +jitter] ps. The capture spans [0, bits.size() * period].
+inline std::vector<Edge> jittered_edges(const LineBits& bits, std::int64_t period,
+                                        std::int64_t jitter, std::mt19937_64& rng) {
+  std::uniform_int_distribution<std::int64_t> shift(-jitter, jitter);
+  std::vector<Edge> edges;
+  for (std::size_t i = 1; i < bits.size(); ++i)
+    if (bits[i] != bits[i - 1])
+      edges.push_back({static_cast<std::int64_t>(i) * period + shift(rng), bits[i]});
+  return edges;
+}
+
+// Samples of a line given by its edges: sample k (at k * sample_period) is the level
+// after the last edge at or before that time. Packed LSB first in 64-bit words.
+inline std::vector<std::uint64_t> sample_edges(bool initial_level, const std::vector<Edge>& edges,
+                                               std::size_t sample_count,
+                                               std::int64_t sample_period) {
+  std::vector<std::uint64_t> words((sample_count + 63) / 64, 0);
+  bool level = initial_level;
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < sample_count; ++k) {
+    const std::int64_t t = static_cast<std::int64_t>(k) * sample_period;
+    while (next < edges.size() && edges[next].time_ps <= t) level = edges[next++].level;
+    if (level) words[k / 64] |= std::uint64_t{1} << (k % 64);
+  }
+  return words;
+}
+
+}  // namespace sercon::wire::test
