@@ -34,8 +34,9 @@ CaptureFormat format_from_extension(const std::filesystem::path& file) {
   if (ext == ".bits" || ext == ".bin") return CaptureFormat::Bits;
   if (ext == ".vcd") return CaptureFormat::Vcd;
   if (ext == ".sr") return CaptureFormat::Sr;
-  const std::string shown = ext.empty() ? std::string("no extension") : "extension '" + ext + "'";
-  throw CaptureError("cannot tell the format of " + file.string() + " from its " + shown +
+  const std::string problem =
+      ext.empty() ? std::string("it has no extension") : "unknown extension '" + ext + "'";
+  throw CaptureError("cannot tell the format of " + file.string() + ": " + problem +
                      " (known: .bits, .bin, .vcd, .sr); name it with --format bits|vcd|sr");
 }
 

@@ -1,4 +1,4 @@
-#include "input_file.hpp"
+#include "sercon/capture/input_file.hpp"
 
 #include <cerrno>
 #include <cstring>

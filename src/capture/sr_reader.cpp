@@ -1,7 +1,7 @@
 #include "sercon/capture/sr_reader.hpp"
 
-#include "input_file.hpp"
 #include "sercon/capture/capture_error.hpp"
+#include "sercon/capture/input_file.hpp"
 #include "sercon/capture/sr_metadata.hpp"
 #include "zip_archive.hpp"
 

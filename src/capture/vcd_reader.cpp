@@ -4,8 +4,8 @@
 #include <string>
 #include <unordered_set>
 
-#include "input_file.hpp"
 #include "sercon/capture/capture_error.hpp"
+#include "sercon/capture/input_file.hpp"
 #include "sercon/capture/vcd_timescale.hpp"
 #include "vcd_tokenizer.hpp"
 
@@ -18,16 +18,22 @@ bool is_scalar_value(char c) {
 
 // VCD widths beyond this are not line signals and not plausible from any real tool.
 constexpr std::uint32_t kMaxWidth = 1U << 24;
+// Words of stray text tolerated before the first $ command.
+constexpr std::size_t kMaxLeadingWords = 16;
 
 class VcdParser {
  public:
-  VcdParser(std::istream& in, std::string_view source) : tokens_(in), source_(source) {}
+  VcdParser(std::istream& in, std::string_view source)
+      : tokens_(in, std::string(source)), source_(source) {}
 
   VcdTrace parse(std::string_view signal) {
     read_header();
-    const VcdVariable& chosen = select_vcd_variable(variables_, signal);
     VcdTrace trace;
-    trace.variable = chosen;
+    try {
+      trace.variable = select_vcd_variable(variables_, signal);
+    } catch (const CaptureError& e) {
+      throw CaptureError(source_ + ": " + e.what());
+    }
     trace.timescale_ps = timescale_ps_;
     read_body(trace);
     check_trace(trace);
@@ -61,15 +67,26 @@ class VcdParser {
 
   void read_header() {
     bool first = true;
+    std::string leading;  // words before the first $ command
+    std::size_t skipped = 0;
     for (;;) {
       const std::string_view tok = tokens_.next();
       if (tok.empty()) {
-        fail(first ? "the file is empty: not a VCD file"
+        fail(first ? (skipped > 0
+                          ? "not a VCD file: no $ command in it (it starts with '" + leading + "')"
+                          : std::string("the file is empty: not a VCD file"))
                    : "the file ends inside the VCD header (no $enddefinitions)");
       }
       if (tok.front() != '$') {
-        fail(first ? "not a VCD file: it starts with '" + printable(tok) + "', not a $ command"
-                   : "unexpected '" + printable(tok) + "' in the VCD header");
+        // Text before the first command is tolerated: sigrok-cli 0.7.2 writes a stray
+        // "META samplerate: N" line there. Anything later is an error.
+        if (!first) fail("unexpected '" + printable(tok) + "' in the VCD header");
+        if (skipped == 0) leading = printable(tok);
+        if (++skipped > kMaxLeadingWords) {
+          fail("not a VCD file: no $ command in its first " + std::to_string(kMaxLeadingWords) +
+               " words (it starts with '" + leading + "')");
+        }
+        continue;
       }
       first = false;
       const std::string command(tok);

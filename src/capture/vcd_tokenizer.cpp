@@ -1,5 +1,7 @@
 #include "vcd_tokenizer.hpp"
 
+#include <utility>
+
 #include "sercon/capture/capture_error.hpp"
 
 namespace sercon::capture {
@@ -15,7 +17,8 @@ bool is_space(char c) {
 
 }  // namespace
 
-VcdTokenizer::VcdTokenizer(std::istream& in) : in_(in), buffer_(kBlockSize) {}
+VcdTokenizer::VcdTokenizer(std::istream& in, std::string source)
+    : in_(in), source_(std::move(source)), buffer_(kBlockSize) {}
 
 bool VcdTokenizer::refill() {
   in_.read(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
@@ -30,8 +33,8 @@ std::string_view VcdTokenizer::next() {
     if (pos_ == end_ && !refill()) return token_;
     const char c = buffer_[pos_];
     if (c == '\0') {
-      throw CaptureError("binary data (a NUL byte) at line " + std::to_string(line_) +
-                         ": this is not a VCD text file");
+      throw CaptureError(source_ + ":" + std::to_string(line_) +
+                         ": binary data (a NUL byte): this is not a VCD text file");
     }
     if (is_space(c)) {
       ++pos_;
@@ -41,9 +44,9 @@ std::string_view VcdTokenizer::next() {
     }
     if (token_.empty()) token_line_ = line_;
     if (token_.size() == kMaxTokenLength) {
-      throw CaptureError("a token of more than " + std::to_string(kMaxTokenLength) +
-                         " characters at line " + std::to_string(token_line_) +
-                         ": this is not a VCD text file");
+      throw CaptureError(source_ + ":" + std::to_string(token_line_) + ": a word of more than " +
+                         std::to_string(kMaxTokenLength) +
+                         " characters: this is not a VCD text file");
     }
     token_ += c;
     ++pos_;

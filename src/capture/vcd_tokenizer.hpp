@@ -12,7 +12,8 @@ namespace sercon::capture {
 
 class VcdTokenizer {
  public:
-  explicit VcdTokenizer(std::istream& in);
+  // `source` names the input in error messages.
+  VcdTokenizer(std::istream& in, std::string source);
 
   // The next token, valid until the next call; empty at the end of the input.
   // Throws CaptureError on binary data or on a token too long to be VCD.
@@ -25,6 +26,7 @@ class VcdTokenizer {
   bool refill();
 
   std::istream& in_;
+  std::string source_;
   std::vector<char> buffer_;
   std::size_t pos_ = 0;
   std::size_t end_ = 0;

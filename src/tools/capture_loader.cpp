@@ -3,6 +3,7 @@
 #include "bit_rate.hpp"
 #include "input_error.hpp"
 #include "sercon/capture/bits_file.hpp"
+#include "sercon/capture/input_file.hpp"
 #include "sercon/capture/sr_reader.hpp"
 #include "sercon/capture/vcd_reader.hpp"
 
@@ -24,13 +25,15 @@ wire::RecoveryOptions recovery_options(const std::optional<std::int64_t>& period
   return options;
 }
 
-// Wraps a clock-recovery failure so the message says which signal it was about.
+// Wraps a clock-recovery failure so the message says which signal it was about, and how
+// to give the rate when detection failed.
 template <typename Recover>
-wire::RecoveredLine recover(const std::string& what, Recover&& run) {
+wire::RecoveredLine recover(const std::string& what, bool rate_given, Recover&& run) {
   try {
     return run();
   } catch (const wire::RecoveryError& e) {
-    throw wire::RecoveryError("cannot recover the bit clock from " + what + ": " + e.what());
+    throw wire::RecoveryError("cannot recover the bit clock from " + what + ": " + e.what() +
+                              (rate_given ? "" : " (sercon decode: --rate 2M|4M|8M|16M)"));
   }
 }
 
@@ -51,7 +54,7 @@ void load_vcd(const DecodeOptions& options, const std::optional<std::int64_t>& p
   out.signal = trace.variable.full_name();
   out.start_ps = trace.start_ps;
   out.unknown_values = trace.unknown_values;
-  out.line = recover("VCD signal '" + out.signal + "'", [&] {
+  out.line = recover("VCD signal '" + out.signal + "'", period_ps.has_value(), [&] {
     return wire::recover_from_edges(trace.initial_level, trace.edges, trace.start_ps, trace.end_ps,
                                     recovery_options(period_ps));
   });
@@ -68,7 +71,7 @@ void load_sr(const DecodeOptions& options, const std::optional<std::int64_t>& pe
                      ns_text(channel.sample_period_ps) + ", and decoding needs at least " +
                      "2 samples per bit (" + ns_text(*period_ps) + ")");
   }
-  out.line = recover("sigrok channel '" + out.signal + "'", [&] {
+  out.line = recover("sigrok channel '" + out.signal + "'", period_ps.has_value(), [&] {
     return wire::recover_from_samples(channel.samples, channel.sample_count,
                                       channel.sample_period_ps, 0, recovery_options(period_ps));
   });
@@ -78,6 +81,7 @@ void load_sr(const DecodeOptions& options, const std::optional<std::int64_t>& pe
 
 LoadedCapture load_capture(const DecodeOptions& options) {
   LoadedCapture out;
+  capture::check_readable_file(options.file);
   out.format = options.format ? *options.format : capture::format_from_extension(options.file);
   std::optional<std::int64_t> period_ps;
   if (options.rate) period_ps = parse_bit_rate(*options.rate);

@@ -81,23 +81,37 @@ void add_decode_command(CLI::App& app) {
   auto options = std::make_shared<DecodeOptions>();
   auto format = std::make_shared<std::string>();
   CLI::App* decode = app.add_subcommand(
-      "decode",
-      "Decode the SERCOS II telegrams on a line capture: one line per telegram (time, kind, "
-      "address, length, data, FCS status, phase of MSTs), then a summary.");
+      "decode", "Decode the SERCOS II telegrams on a line capture (bits, VCD, sigrok)");
+  decode->footer(
+      "Prints one line per telegram (time in ns from the capture start, kind, address, length,\n"
+      "data in hex, FCS status; MSTs also the phase), broken frames with error=CLASS, then a\n"
+      "summary. Exit status 0 for a readable capture, even with broken telegrams; 1 for bad\n"
+      "input. See docs/decode.md.\n\n"
+      "Examples:\n"
+      "  sercon decode --rate 4M captures/phase-up-4drives.bits\n"
+      "  sercon decode captures/cp4-excerpt.vcd\n"
+      "  sercon decode --json --signal D0 capture.sr");
 
-  decode->add_option("FILE", options->file, "Capture file (.bits, .vcd or .sr)")->required();
+  decode->add_option("FILE", options->file, "Capture file (.bits, .vcd or .sr)")
+      ->required()
+      ->type_name("");
   decode
       ->add_option("--format", *format,
                    "Capture format: bits (line levels packed MSB first), vcd (one 1-bit "
                    "signal), sr (sigrok session, one logic channel). Default: from the "
                    "file extension (.bits/.bin, .vcd, .sr)")
-      ->check(CLI::IsMember({"bits", "vcd", "sr"}));
-  decode->add_option("--rate", options->rate,
-                     "Bit rate: 2M, 4M, 8M or 16M. Required for bits; detected from the "
-                     "capture for vcd and sr when not given");
-  decode->add_option("--signal", options->signal,
-                     "VCD signal (name or scope.name) or sigrok channel to decode. Default: "
-                     "the only 1-bit signal / logic channel");
+      ->check(CLI::IsMember({"bits", "vcd", "sr"}))
+      ->type_name("FORMAT");
+  decode
+      ->add_option("--rate", options->rate,
+                   "Bit rate: 2M, 4M, 8M or 16M. Required for bits; detected from the "
+                   "capture for vcd and sr when not given")
+      ->type_name("RATE");
+  decode
+      ->add_option("--signal", options->signal,
+                   "VCD signal (name or scope.name) or sigrok channel to decode. Default: "
+                   "the only 1-bit signal / logic channel")
+      ->type_name("NAME");
   decode->add_flag("--json", options->json,
                    "JSON Lines: one object per telegram, the last line {\"summary\": ...}");
 
