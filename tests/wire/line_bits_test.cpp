@@ -72,7 +72,7 @@ TEST(LineBits, AppendAtAnyAlignmentMatchesPushBack) {
     const auto packed = a.packed();
     for (std::size_t i = 0; i < ref.size(); ++i) {
       ASSERT_EQ(a[i], ref[i]) << i;
-      ASSERT_EQ(((packed[i / 8] >> (7 - i % 8)) & 1u) != 0, ref[i]) << i;
+      ASSERT_EQ(((unsigned{packed[i / 8]} >> (7 - i % 8)) & 1u) != 0, ref[i]) << i;
     }
     for (std::size_t i = 0; i < ref.size(); i += 13) {
       const std::uint64_t w = a.word_at(i);

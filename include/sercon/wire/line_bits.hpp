@@ -20,7 +20,7 @@ class LineBits {
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   // Level of bit i (precondition i < size(); at() checks and throws std::out_of_range).
-  bool level(std::size_t i) const { return ((buf_[i >> 3] >> (7 - (i & 7))) & 1u) != 0; }
+  bool level(std::size_t i) const { return ((unsigned{buf_[i >> 3]} >> (7 - (i & 7))) & 1u) != 0; }
   bool operator[](std::size_t i) const { return level(i); }
   bool at(std::size_t i) const;
 
