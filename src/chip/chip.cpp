@@ -167,8 +167,8 @@ void Chip::enter_reset(ResetCause cause) {
   for (std::size_t i = 0; i < kPinCount; ++i) {
     const Pin p = pin_at(i);
     const PinDirection dir = pin_info(p).direction;
+    // D15-0 and A15-0 belong to the bus interface (PinBus), which is not reset.
     if (dir == PinDirection::Out && p != Pin::BUSYN) set_output(p, reset_output_level(p));
-    if (dir == PinDirection::InOut && chip_drives_[i]) set_output(p, Level::HighZ);
   }
   for (auto& u : units_) u->reset(cause);
 }
@@ -336,28 +336,29 @@ BusResult Chip::register_cycle(const BusCycle& cycle, const ByteLanes& lanes) {
   return result;
 }
 
-std::uint16_t Chip::word_read(const BusCycle& base) {
+std::uint16_t Chip::bus_word_read(const BusCycle& base) {
   const bool bus16 = input_high(Pin::BUSWIDTH);
   const bool bytedir = input_high(Pin::BYTEDIR);
   std::uint16_t word = 0;
   for (unsigned half = 0; half < (bus16 ? 1u : 2u); ++half) {
     BusCycle c = base;
-    c.address = static_cast<std::uint16_t>(base.address | half);
+    c.write = false;
     c.bhen = false;
+    c.address = static_cast<std::uint16_t>((base.address & ~1u) | half);
     const BusResult r = bus(c);
     word |= byte_lanes(bus16, bytedir, c.address, c.bhen).to_word(r.data);
   }
   return word;
 }
 
-void Chip::word_write(BusCycle base, std::uint16_t value) {
+void Chip::bus_word_write(const BusCycle& base, std::uint16_t value) {
   const bool bus16 = input_high(Pin::BUSWIDTH);
   const bool bytedir = input_high(Pin::BYTEDIR);
-  base.write = true;
-  base.bhen = false;
   for (unsigned half = 0; half < (bus16 ? 1u : 2u); ++half) {
     BusCycle c = base;
-    c.address = static_cast<std::uint16_t>(base.address | half);
+    c.write = true;
+    c.bhen = false;
+    c.address = static_cast<std::uint16_t>((base.address & ~1u) | half);
     c.data = byte_lanes(bus16, bytedir, c.address, c.bhen).to_data(value);
     bus(c);
   }
@@ -392,19 +393,19 @@ BusCycle ram_select(std::uint16_t word_address, std::uint16_t ram_words) {
 }  // namespace
 
 std::uint16_t Chip::reg_read(std::uint16_t word_address) {
-  return word_read(register_select(word_address));
+  return bus_word_read(register_select(word_address));
 }
 
 void Chip::reg_write(std::uint16_t word_address, std::uint16_t value) {
-  word_write(register_select(word_address), value);
+  bus_word_write(register_select(word_address), value);
 }
 
 std::uint16_t Chip::ram_read(std::uint16_t word_address) {
-  return word_read(ram_select(word_address, ram_.size()));
+  return bus_word_read(ram_select(word_address, ram_.size()));
 }
 
 void Chip::ram_write(std::uint16_t word_address, std::uint16_t value) {
-  word_write(ram_select(word_address, ram_.size()), value);
+  bus_word_write(ram_select(word_address, ram_.size()), value);
 }
 
 // --- telegram processor's RAM port ----------------------------------------------------

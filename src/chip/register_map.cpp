@@ -159,8 +159,12 @@ SERCON_WORD_REGISTER(kTconclk, "TCONCLK", RW, Project, "CON_CLK active from this
 SERCON_WORD_REGISTER(kWconclk, "WCONCLK", RW, Project, "CON_CLK active width (us); 0 = never")
 SERCON_WORD_REGISTER(kTdivclk, "TDIVCLK", RW, DeltaSpec, "First DIV_CLK pulse, cycle time (us)")
 SERCON_WORD_REGISTER(kDtdivclk, "DTDIVCLK", RW, DeltaSpec, "Distance of DIV_CLK pulses (us)")
-SERCON_WORD_REGISTER(kTwdog, "TWDOG", RW, DeltaSpec, "Watchdog time constant (2AH)")
 #undef SERCON_WORD_REGISTER
+
+// Delta spec 2.11.2: 2AH is one of the "SERCON816 NEW Control Registers".
+constexpr BitField kTwdog[] = {
+    {"TWDOG", 0, 16, RW, 0, Only816, DeltaSpec, "Watchdog time constant (2AH)"},
+};
 
 constexpr BitField kConClkControl[] = {
     {"POLCONCLK", 0, 1, RW, 0, Both, Project, "CON_CLK 1-active (0) or 0-active (1)"},

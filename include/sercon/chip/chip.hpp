@@ -67,6 +67,10 @@ class Chip {
   void reg_write(std::uint16_t word_address, std::uint16_t value);
   std::uint16_t ram_read(std::uint16_t word_address);
   void ram_write(std::uint16_t word_address, std::uint16_t value);
+  // The same word access with the chip selects and even byte address of `base` (board
+  // decodings use it); `base.write`, `base.bhen` and `base.data` are ignored.
+  std::uint16_t bus_word_read(const BusCycle& base);
+  void bus_word_write(const BusCycle& base, std::uint16_t value);
 
   // --- the telegram processor's RAM port (internal side) ------------------------------
   // Records the word as in use during the present MCLK period (BUSYN for a µP access to
@@ -81,6 +85,8 @@ class Chip {
   // std::invalid_argument for an output, a line the chip drives now, HighZ on a pin
   // without pull resistor, MCLK/SCLK (given as frequencies in ChipConfig), TEST = 1.
   void drive(Pin p, sim::Level level);
+  // True while the chip drives `p` (outputs always; D15-0 / A15-0 when it drives them).
+  bool drives(Pin p) const { return chip_drives_.at(index_of(p)); }
   // The level an input is read as: HighZ resolves through its pull resistor.
   bool input_high(Pin p) const;
   // A unit drives an output: while OUTZ = 1 the pin stays HighZ and takes `level` after.
@@ -130,8 +136,6 @@ class Chip {
   void on_sermode_write(std::uint16_t written);
   BusResult ram_cycle(const BusCycle& cycle, const ByteLanes& lanes);
   BusResult register_cycle(const BusCycle& cycle, const ByteLanes& lanes);
-  std::uint16_t word_read(const BusCycle& base);
-  void word_write(BusCycle base, std::uint16_t value);
 
   sim::Scheduler& scheduler_;
   ChipConfig config_;

@@ -1,0 +1,126 @@
+// BUSYN: "becomes active if an access to an address of the dual port RAM is performed
+// simultaneously to an access to the same memory location by the internal telegram
+// processing" (datasheet Table 1); "has to have a maximum length of one cycle of MCLK"
+// (delta spec 2.8). Times are exact picoseconds on the MCLK grid from time 0.
+#include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
+
+#include "chip_fixture.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using sim::Level;
+using sim::Time;
+using testing::ChipOnBench;
+
+// Records every BUSYN edge with its time.
+struct EdgeLog {
+  EdgeLog(ChipOnBench& bench, Pin p) {
+    bench.chip->pin(p).watch(
+        [this, &bench](Level l) { edges.emplace_back(bench.scheduler.now(), l); });
+  }
+  std::vector<std::pair<Time, Level>> edges;
+};
+
+ChipConfig mclk(std::int64_t hz) {
+  ChipConfig c;
+  c.mclk_hz = hz;
+  return c;
+}
+
+TEST(Busy, SameWordInTheSameMclkPeriodPullsBusynLowUntilTheNextEdge) {
+  ChipOnBench bench(mclk(32'000'000));  // T = 31 250 ps
+  EdgeLog log(bench, Pin::BUSYN);
+  bench.scheduler.run_until(100'000);  // period 3 runs 93 750 .. 125 000
+  bench.chip->tp_ram_write(0x0123, 0x4444);
+  bench.scheduler.run_until(110'000);
+  EXPECT_EQ(bench.chip->ram_read(0x0123), 0x4444);  // the µP sees the new value
+  EXPECT_EQ(bench.chip->pin(Pin::BUSYN).level(), Level::Low);
+  bench.scheduler.run_until(200'000);
+  ASSERT_EQ(log.edges.size(), 2u);
+  EXPECT_EQ(log.edges[0], std::make_pair(Time{110'000}, Level::Low));
+  EXPECT_EQ(log.edges[1], std::make_pair(Time{125'000}, Level::High));
+  EXPECT_LE(log.edges[1].first - log.edges[0].first, bench.chip->mclk_period());
+}
+
+TEST(Busy, AnAccessAtThePeriodStartLastsExactlyOneMclk) {
+  ChipOnBench bench(mclk(64'000'000));  // T = 15 625 ps
+  EdgeLog log(bench, Pin::BUSYN);
+  bench.scheduler.run_until(15'625 * 4);
+  bench.chip->tp_ram_read(7);
+  bench.chip->ram_write(7, 1);
+  bench.scheduler.run_until(15'625 * 10);
+  ASSERT_EQ(log.edges.size(), 2u);
+  EXPECT_EQ(log.edges[0].first, 15'625 * 4);
+  EXPECT_EQ(log.edges[1].first, 15'625 * 5);
+}
+
+TEST(Busy, OtherWordOrOtherPeriodDoesNotCollide) {
+  ChipOnBench bench(mclk(32'000'000));
+  EdgeLog log(bench, Pin::BUSYN);
+  bench.chip->tp_ram_read(10);
+  bench.chip->ram_read(11);           // another word
+  bench.scheduler.run_until(31'250);  // next period
+  bench.chip->ram_read(10);
+  bench.scheduler.run_until(1'000'000);
+  EXPECT_TRUE(log.edges.empty());
+}
+
+// The bus cycle reports the collision; a µP that touches the word first is not delayed.
+TEST(Busy, BusResultReportsTheCollision) {
+  ChipOnBench bench;
+  BusCycle c;
+  c.mcsn0 = false;
+  c.mcsn1 = false;
+  c.bhen = false;
+  c.address = 0x0040;
+  EXPECT_FALSE(bench.chip->bus(c).busy);
+  bench.chip->tp_ram_write(0x0020, 0xFFFF);
+  EXPECT_TRUE(bench.chip->bus(c).busy);
+  EXPECT_TRUE(bench.chip->bus(c).busy);  // again in the same period: still busy
+  c.address = 0x0042;
+  EXPECT_FALSE(bench.chip->bus(c).busy);
+}
+
+// Several collisions in one period give one low pulse; a collision in the next period
+// (after the rise) gives a second one.
+TEST(Busy, RepeatedCollisionsStayWithinOnePeriodEach) {
+  ChipOnBench bench(mclk(50'000'000));  // T = 20 000 ps
+  EdgeLog log(bench, Pin::BUSYN);
+  bench.scheduler.run_until(5'000);
+  bench.chip->tp_ram_write(1, 1);
+  bench.chip->ram_read(1);
+  bench.scheduler.run_until(9'000);
+  bench.chip->ram_read(1);
+  bench.scheduler.run_until(20'000);
+  bench.chip->tp_ram_write(1, 2);
+  bench.chip->ram_read(1);
+  bench.scheduler.run_until(100'000);
+  const std::vector<std::pair<Time, Level>> expected = {
+      {5'000, Level::Low}, {20'000, Level::High}, {20'000, Level::Low}, {40'000, Level::High}};
+  EXPECT_EQ(log.edges, expected);
+}
+
+// A reset ends a busy pulse at once (BUSYN inactive after reset).
+TEST(Busy, ResetReleasesBusyn) {
+  ChipOnBench bench;
+  bench.chip->tp_ram_read(3);
+  bench.chip->ram_read(3);
+  EXPECT_EQ(bench.chip->pin(Pin::BUSYN).level(), Level::Low);
+  bench.chip->reg_write(0x01, 0x0002);
+  EXPECT_EQ(bench.chip->pin(Pin::BUSYN).level(), Level::High);
+  bench.scheduler.run_until(1'000'000);
+  EXPECT_EQ(bench.chip->pin(Pin::BUSYN).level(), Level::High);
+}
+
+TEST(Busy, InternalPortChecksTheAddress) {
+  ChipOnBench bench;
+  EXPECT_THROW(bench.chip->tp_ram_read(2048), std::out_of_range);
+  EXPECT_THROW(bench.chip->tp_ram_write(2048, 0), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace sercon::chip

@@ -1,0 +1,170 @@
+// The bus driven through pins: Intel and Motorola strobes (Table 1 RDN, WRN, BUSMODE1-0),
+// the multiplexed address latch (ADMUX, ALEL, ALEH; datasheet 3.5.3), data lines driven
+// only while a read strobe is active (datasheet 3.5.4: t_RDZ, D15-0 high-Z after RDN).
+#include "sercon/chip/pin_bus.hpp"
+
+#include <gtest/gtest.h>
+
+#include "chip_fixture.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using sim::Level;
+using testing::ChipOnBench;
+
+class PinBusTest : public ::testing::Test {
+ protected:
+  Chip& chip() { return *bench.chip; }
+  void set(Pin p, bool high) { chip().drive(p, sim::level_of(high)); }
+  void address(std::uint16_t a) {
+    for (unsigned bit = 0; bit < 16; ++bit) set(address_pin(bit), (a >> bit) & 1u);
+  }
+  void data(std::uint16_t d) {
+    for (unsigned bit = 0; bit < 16; ++bit) set(data_pin(bit), (d >> bit) & 1u);
+  }
+  void float_data() {
+    for (unsigned bit = 0; bit < 16; ++bit) chip().drive(data_pin(bit), Level::HighZ);
+  }
+  std::uint16_t data_lines() {
+    std::uint16_t d = 0;
+    for (unsigned bit = 0; bit < 16; ++bit) {
+      if (chip().input_high(data_pin(bit))) d = static_cast<std::uint16_t>(d | 1u << bit);
+    }
+    return d;
+  }
+  bool any_data_driven() {
+    for (unsigned bit = 0; bit < 16; ++bit) {
+      if (chip().drives(data_pin(bit))) return true;
+    }
+    return false;
+  }
+  void select_registers(bool on) {
+    set(Pin::PCSN0, !on);
+    set(Pin::PCS1, on);
+  }
+  void select_ram(bool on) {
+    set(Pin::MCSN0, !on);
+    set(Pin::MCSN1, !on);
+  }
+
+  ChipOnBench bench;
+};
+
+// Intel: "data is read when RDN is 0", "written to when WRN is 0".
+TEST_F(PinBusTest, IntelReadDrivesDataWhileRdnIsLow) {
+  set(Pin::BHEN, false);
+  address(0x0000);
+  select_registers(true);
+  set(Pin::RDN, false);
+  EXPECT_EQ(data_lines(), 0x0010);  // VERSION
+  EXPECT_TRUE(any_data_driven());
+  EXPECT_THROW(chip().drive(Pin::D4, Level::Low), std::invalid_argument);  // contention
+  set(Pin::RDN, true);
+  EXPECT_FALSE(any_data_driven());
+  EXPECT_EQ(chip().pin(Pin::D4).level(), Level::HighZ);
+}
+
+TEST_F(PinBusTest, IntelWriteTakesDataAtTheEndOfWrn) {
+  set(Pin::BHEN, false);
+  address(0x0014);  // register 0x0A
+  select_registers(true);
+  set(Pin::WRN, false);
+  data(0x0003);
+  EXPECT_EQ(chip().reg_read(0x0A), 0);  // nothing yet
+  set(Pin::WRN, true);
+  EXPECT_EQ(chip().reg_read(0x0A), 0x0003);
+}
+
+// Motorola, BUSMODE1 = 0: RDN is a 0-active data strobe, WRN = 1 read / 0 write.
+TEST_F(PinBusTest, MotorolaLowActiveStrobe) {
+  set(Pin::BUSMODE0, true);
+  set(Pin::BHEN, false);
+  address(0x0020);  // RAM word 0x10
+  select_ram(true);
+  set(Pin::WRN, false);
+  data(0xBEEF);
+  set(Pin::RDN, false);
+  set(Pin::RDN, true);
+  EXPECT_EQ(chip().ram().read(0x10), 0xBEEF);
+  float_data();
+  set(Pin::WRN, true);
+  set(Pin::RDN, false);
+  EXPECT_EQ(data_lines(), 0xBEEF);
+  set(Pin::RDN, true);
+  EXPECT_FALSE(any_data_driven());
+}
+
+// Motorola, BUSMODE1 = 1: the data strobe is 1-active.
+TEST_F(PinBusTest, MotorolaHighActiveStrobe) {
+  set(Pin::RDN, false);  // inactive for a 1-active strobe
+  set(Pin::BUSMODE0, true);
+  set(Pin::BUSMODE1, true);
+  set(Pin::BHEN, false);
+  address(0x0000);
+  select_registers(true);
+  set(Pin::RDN, true);
+  EXPECT_EQ(data_lines(), 0x0010);
+  set(Pin::RDN, false);
+  EXPECT_FALSE(any_data_driven());
+}
+
+// ADMUX = 1: "A15-0 are the outputs of the address latch"; ALEL / ALEH = 1 pass D7-0 /
+// D15-8 through, 0 stores them.
+TEST_F(PinBusTest, MultiplexedAddressLatch) {
+  set(Pin::ADMUX, true);
+  set(Pin::BHEN, false);
+  data(0x0014);  // address phase: register 0x0A
+  set(Pin::ALEL, false);
+  set(Pin::ALEH, false);
+  EXPECT_EQ(chip().unit<PinBus>()->latched_address(), 0x0014);
+  EXPECT_EQ(chip().pin(Pin::A2).level(), Level::High);  // latch drives A15-0
+  EXPECT_THROW(chip().drive(Pin::A2, Level::Low), std::invalid_argument);
+  data(0x0004);  // data phase: the latch holds
+  select_registers(true);
+  set(Pin::WRN, false);
+  set(Pin::WRN, true);
+  EXPECT_EQ(chip().reg_read(0x0A), 0x0004);
+  set(Pin::ADMUX, false);  // A15-0 become inputs again
+  EXPECT_FALSE(chip().drives(Pin::A2));
+}
+
+// Selecting RAM and registers at once is a board fault: the strobe makes no access.
+TEST_F(PinBusTest, DoubleSelectIsRefused) {
+  set(Pin::BHEN, false);
+  address(0x0000);
+  select_registers(true);
+  select_ram(true);
+  set(Pin::RDN, false);
+  EXPECT_FALSE(any_data_driven());
+  set(Pin::RDN, true);
+  EXPECT_EQ(chip().unit<PinBus>()->refused_cycles(), 1u);
+}
+
+// Table 1, DMAACKRN: "the receive FIFO is read, independent of the levels on A6-1 and
+// the chip select signals": such a strobe is no RAM or register access.
+TEST_F(PinBusTest, DmaAcknowledgeBypassesRamAndRegisters) {
+  set(Pin::BHEN, false);
+  address(0x0000);
+  select_registers(true);
+  set(Pin::DMAACKRN, false);
+  set(Pin::RDN, false);
+  EXPECT_FALSE(any_data_driven());
+  set(Pin::RDN, true);
+}
+
+// A byte read on a 16-bit bus drives only its lane.
+TEST_F(PinBusTest, ByteReadDrivesOneLane) {
+  chip().ram_write(0, 0x1234);
+  set(Pin::BHEN, true);
+  address(0x0000);
+  select_ram(true);
+  set(Pin::RDN, false);
+  EXPECT_TRUE(chip().drives(Pin::D0));
+  EXPECT_FALSE(chip().drives(Pin::D8));
+  EXPECT_EQ(data_lines(), 0xFF34);
+  set(Pin::RDN, true);
+}
+
+}  // namespace
+}  // namespace sercon::chip
