@@ -17,6 +17,8 @@
 //     remembers the level and keeps the pin high-impedance while OUTZ = 1.
 //  5. Time: scheduler().now() in picoseconds; mclk_period() and next_mclk_edge() give
 //     the MCLK grid (edges at k * period from time 0).
+//  6. A unit's destructor cancels its pending events: a chip can be freed (C API) while
+//     its scheduler runs on.
 #pragma once
 
 #include <cstdint>
