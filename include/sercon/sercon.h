@@ -1,0 +1,176 @@
+/* C interface to the SERCON816 / SERCON410B model: a simulation (time in integer
+ * picoseconds), chips on it, their registers, RAM and pins. Every call acts at the
+ * simulation's current time; sercon_sim_run_until() lets time pass.
+ *
+ * Errors: functions return a negative sercon_status (or NULL) and sercon_last_error()
+ * says what went wrong, in English. No call throws or aborts on bad input.
+ * Ownership: a sim owns its chips. Free chips with sercon_chip_free(), or all at once
+ * with sercon_sim_free(), after which the chip pointers must not be used.
+ * Threads: a sim and its chips belong to one thread at a time; the last error is kept
+ * per thread. */
+#ifndef SERCON_SERCON_H
+#define SERCON_SERCON_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sercon_sim sercon_sim;
+typedef struct sercon_chip sercon_chip;
+
+typedef enum sercon_status {
+  SERCON_OK = 0,
+  SERCON_ERR_ARGUMENT = -1, /* NULL pointer, bad config, bad pin or level */
+  SERCON_ERR_RANGE = -2,    /* address beyond the register or RAM space, time in the past */
+  SERCON_ERR_PIN = -3,      /* the pin cannot be driven: an output, or driven by the chip */
+  SERCON_ERR_INTERNAL = -4  /* a failure inside the model (please report it) */
+} sercon_status;
+
+typedef enum sercon_variant { SERCON_VARIANT_816 = 0, SERCON_VARIANT_410B = 1 } sercon_variant;
+
+typedef enum sercon_level { SERCON_LOW = 0, SERCON_HIGH = 1, SERCON_HIGHZ = 2 } sercon_level;
+
+/* Every signal pin of datasheet Table 1. */
+typedef enum sercon_pin {
+  SERCON_PIN_D0 = 0,
+  SERCON_PIN_D1 = 1,
+  SERCON_PIN_D2 = 2,
+  SERCON_PIN_D3 = 3,
+  SERCON_PIN_D4 = 4,
+  SERCON_PIN_D5 = 5,
+  SERCON_PIN_D6 = 6,
+  SERCON_PIN_D7 = 7,
+  SERCON_PIN_D8 = 8,
+  SERCON_PIN_D9 = 9,
+  SERCON_PIN_D10 = 10,
+  SERCON_PIN_D11 = 11,
+  SERCON_PIN_D12 = 12,
+  SERCON_PIN_D13 = 13,
+  SERCON_PIN_D14 = 14,
+  SERCON_PIN_D15 = 15,
+  SERCON_PIN_A0 = 16,
+  SERCON_PIN_A1 = 17,
+  SERCON_PIN_A2 = 18,
+  SERCON_PIN_A3 = 19,
+  SERCON_PIN_A4 = 20,
+  SERCON_PIN_A5 = 21,
+  SERCON_PIN_A6 = 22,
+  SERCON_PIN_A7 = 23,
+  SERCON_PIN_A8 = 24,
+  SERCON_PIN_A9 = 25,
+  SERCON_PIN_A10 = 26,
+  SERCON_PIN_A11 = 27,
+  SERCON_PIN_A12 = 28,
+  SERCON_PIN_A13 = 29,
+  SERCON_PIN_A14 = 30,
+  SERCON_PIN_A15 = 31,
+  SERCON_PIN_ALEL = 32,
+  SERCON_PIN_ALEH = 33,
+  SERCON_PIN_RDN = 34,
+  SERCON_PIN_WRN = 35,
+  SERCON_PIN_BHEN = 36,
+  SERCON_PIN_MCSN0 = 37,
+  SERCON_PIN_MCSN1 = 38,
+  SERCON_PIN_PCSN0 = 39,
+  SERCON_PIN_PCS1 = 40,
+  SERCON_PIN_BUSYN = 41,
+  SERCON_PIN_DMAREQR = 42,
+  SERCON_PIN_DMAACKRN = 43,
+  SERCON_PIN_DMAREQT = 44,
+  SERCON_PIN_DMAACKTN = 45,
+  SERCON_PIN_ADMUX = 46,
+  SERCON_PIN_BUSMODE0 = 47,
+  SERCON_PIN_BUSMODE1 = 48,
+  SERCON_PIN_BUSWIDTH = 49,
+  SERCON_PIN_BYTEDIR = 50,
+  SERCON_PIN_INT0 = 51,
+  SERCON_PIN_INT1 = 52,
+  SERCON_PIN_SBAUD16 = 53,
+  SERCON_PIN_SBAUD = 54,
+  SERCON_PIN_RXD = 55,
+  SERCON_PIN_RXC = 56,
+  SERCON_PIN_RECACTN = 57,
+  SERCON_PIN_TXD1 = 58,
+  SERCON_PIN_TXD2 = 59,
+  SERCON_PIN_TXD3 = 60,
+  SERCON_PIN_TXD4 = 61,
+  SERCON_PIN_TXD5 = 62,
+  SERCON_PIN_TXD6 = 63,
+  SERCON_PIN_TXC = 64,
+  SERCON_PIN_IDLE = 65,
+  SERCON_PIN_TM0 = 66,
+  SERCON_PIN_TM1 = 67,
+  SERCON_PIN_WDOGN = 68,
+  SERCON_PIN_L_ERRN = 69,
+  SERCON_PIN_CYC_CLK = 70,
+  SERCON_PIN_CON_CLK = 71,
+  SERCON_PIN_DIV_CLK = 72,
+  SERCON_PIN_SCLK = 73,
+  SERCON_PIN_SCLKO2 = 74,
+  SERCON_PIN_SCLKO4 = 75,
+  SERCON_PIN_MCLK = 76,
+  SERCON_PIN_RSTN = 77,
+  SERCON_PIN_TEST = 78,
+  SERCON_PIN_OUTZ = 79,
+  SERCON_PIN_NDTRO = 80,
+  SERCON_PIN_COUNT = 81
+} sercon_pin;
+
+typedef struct sercon_chip_config {
+  int variant;     /* sercon_variant */
+  int64_t mclk_hz; /* 12..64 MHz, 1e12 divisible by it (exact picosecond period) */
+  int64_t sclk_hz; /* up to 64 MHz (64 MHz nominal) */
+  /* Levels (0 or 1) of the strap pins the board ties. */
+  int sbaud;   /* pin 29 */
+  int sbaud16; /* pin 28: 1 = 410B-compatible mode (SREGEN on the 410B, must be 1) */
+  int tm0;     /* pins 30, 31: repeater reset value and test mode */
+  int tm1;
+  int buswidth; /* 1 = 16-bit data bus */
+  int bytedir;  /* 1 = A0 = 0 addresses the high byte */
+} sercon_chip_config;
+
+/* Called after a pin changed level, at simulation time t_ps. */
+typedef void (*sercon_pin_callback)(void* user, sercon_pin pin, sercon_level level, int64_t t_ps);
+
+/* The message of the last failed call on this thread ("" if none failed yet). */
+const char* sercon_last_error(void);
+
+sercon_sim* sercon_sim_new(void);
+void sercon_sim_free(sercon_sim* sim);            /* also frees its chips; NULL is ignored */
+int64_t sercon_sim_now_ps(const sercon_sim* sim); /* negative sercon_status on error */
+/* Runs every event up to t_ps and sets the clock to t_ps (t_ps >= now). */
+int sercon_sim_run_until(sercon_sim* sim, int64_t t_ps);
+
+/* Defaults: SERCON816, MCLK 32 MHz, SCLK 64 MHz, SBAUD 0, SBAUD16 0, TM0 1, TM1 1,
+ * 16-bit bus, low byte first. */
+void sercon_chip_config_default(sercon_chip_config* config);
+/* NULL on a bad config (see sercon_last_error()). */
+sercon_chip* sercon_chip_new(sercon_sim* sim, const sercon_chip_config* config);
+void sercon_chip_free(sercon_chip* chip); /* NULL is ignored */
+
+/* Word accesses as the board's µP makes them (BUSWIDTH / BYTEDIR pins). Registers: word
+ * addresses 0x00..0x3F (0x2B..0x3F read 0); RAM: below 2048 (816) or 1024 (410B).
+ * Reads return the value 0..0xFFFF, or a negative sercon_status. */
+int32_t sercon_reg_read(sercon_chip* chip, uint32_t word_addr);
+int sercon_reg_write(sercon_chip* chip, uint32_t word_addr, uint16_t value);
+int32_t sercon_ram_read(sercon_chip* chip, uint32_t word_addr);
+int sercon_ram_write(sercon_chip* chip, uint32_t word_addr, uint16_t value);
+
+/* Drives an input pin (or a data / address line the chip does not drive). */
+int sercon_pin_set(sercon_chip* chip, int pin, int level);
+/* The pin's level (a sercon_level), or a negative sercon_status. */
+int sercon_pin_get(const sercon_chip* chip, int pin);
+/* Calls callback(user, ...) on every change of the pin until the chip is freed. */
+int sercon_on_pin_change(sercon_chip* chip, int pin, sercon_pin_callback callback, void* user);
+
+/* Serial bit rate in bit/s (also the TxC / RxC frequency), from the pins and register
+ * 0x01; 0 while OUTZ = 1. Negative sercon_status on error. */
+int64_t sercon_bit_rate(const sercon_chip* chip);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SERCON_SERCON_H */
