@@ -1,0 +1,69 @@
+// What travels on a serial line (a fibre, or the RS-485 wire) between a transmitter and
+// the receivers behind it, scheduled per telegram, not per bit (architecture guide):
+// a line is in one condition at a time, and telegrams are bursts of exact line bits with
+// an exact start time. The chip's serial unit emits these on its TxD side and takes them
+// on its RxD side; fibres and buses (ring layer) carry them, with delay, breaks and bit
+// errors. Nothing here knows about registers or telegram lists.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "sercon/sim/time.hpp"
+#include "sercon/wire/line_bits.hpp"
+
+namespace sercon::chip {
+
+// The state of a line between and around telegrams.
+enum class LineCondition : std::uint8_t {
+  Dark,      // no light / undriven: no edges (transmitter off, high-Z, fibre broken)
+  Idle,      // idle fill: a level change every 8 bit times (sercos-facts §1)
+  Light,     // continuous light (test mode, delta spec 2.3.3): no edges
+  ZeroBits,  // zero bit stream (test mode): a level change every bit time
+};
+
+constexpr std::string_view to_string(LineCondition c) {
+  switch (c) {
+    case LineCondition::Dark:
+      return "dark";
+    case LineCondition::Idle:
+      return "idle";
+    case LineCondition::Light:
+      return "light";
+    case LineCondition::ZeroBits:
+      return "zero-bits";
+  }
+  return "?";
+}
+
+// One telegram on the line: the opening flag to the closing flag, NRZI levels as sent.
+// The bits are shared (not copied) by every hop that passes them on unchanged; a hop that
+// changes them (a bit error) makes its own copy.
+struct LineBurst {
+  sim::Time start = 0;       // leading edge of the first line bit, at this point of the line
+  sim::Time bit_period = 0;  // ps per bit (62'500 at 16 Mbit/s)
+  std::shared_ptr<const wire::LineBits> bits;
+
+  sim::Time duration() const {
+    return bits ? static_cast<sim::Time>(bits->size()) * bit_period : 0;
+  }
+  sim::Time end() const { return start + duration(); }
+};
+
+// Something that listens to a line (a chip's receiver, a fibre's input, a tracer).
+// Calls come in time order per line; `at` / `burst.start` may lie in the future of the
+// scheduler's now (a fibre delivers at send time + delay by scheduling, so in practice a
+// receiver is told at the moment things happen at its input, see ring layer docs).
+class LineListener {
+ public:
+  virtual ~LineListener() = default;
+  // The line enters `condition` at time `at` (bit_period says how fast idle/zero-bit
+  // edges come; 0 for Dark/Light).
+  virtual void line_condition(sim::Time at, LineCondition condition, sim::Time bit_period) = 0;
+  // A telegram begins on the line at burst.start; the line returns to Idle at burst.end()
+  // unless another condition is announced.
+  virtual void line_burst(const LineBurst& burst) = 0;
+};
+
+}  // namespace sercon::chip
