@@ -1,0 +1,100 @@
+// The serial interface (datasheet §1, delta spec 2.3): transmitter on TxD1-6, receiver on
+// RxD, repeater (REPON), line monitor (RDIST, FIBBR, RECACT, L_ERRN). It works per
+// telegram, never per bit: telegrams are LineBursts (line.hpp) with exact picosecond
+// start times, decoded once per shared bits object. docs/serial-and-ring.md has every
+// behaviour and decision.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+
+#include "sercon/chip/chip_unit.hpp"
+#include "sercon/chip/line.hpp"
+#include "sercon/sim/time.hpp"
+#include "sercon/wire/decoder.hpp"
+
+namespace sercon::chip {
+
+class Chip;
+class SerialTransmitter;
+class SerialReceiver;
+class SerialRepeater;
+class LineMonitor;
+
+// A telegram the receiver has decoded (or cut off by an error).
+struct ReceivedTelegram {
+  sim::Time start;     // first bit of the opening flag at RxD
+  sim::Time end;       // end of the closing flag's last bit at RxD (or where the error cut it)
+  sim::Time detected;  // first MCLK edge at or after end + 5.5 bit + 3 MCLK (facts §5)
+  // Address, data, error class. Valid only during the on_telegram callback: it may be the
+  // memoized decode shared with every other chip that received the same bits.
+  const wire::DecodedFrame& frame;
+};
+
+class SerialUnit : public ChipUnit {
+ public:
+  using TelegramStartHandler = std::function<void(sim::Time start, std::uint8_t address)>;
+  using TelegramHandler = std::function<void(const ReceivedTelegram&)>;
+
+  static constexpr unsigned kTxdCount = 6;
+  // The repeater passes RxD on to TxD this many bit times after it arrives, rounded up to
+  // the SCLK grid (docs/serial-and-ring.md, "Repeater").
+  static constexpr unsigned kRepeaterDelayBits = 2;
+
+  explicit SerialUnit(Chip& chip);
+  ~SerialUnit() override;
+
+  void reset(ResetCause cause) override;
+  void release() override;
+
+  // One bit time at the present rate (Chip::serial_clocks()); 0 while the clocks are off.
+  sim::Time bit_period() const;
+
+  // --- transmitter (the telegram processor's side) ---------------------------------------
+  // Sends address + data as one telegram whose opening flag starts at `start` (>= now).
+  // Returns the end time (end of the closing flag). Throws std::logic_error if it overlaps
+  // the unit's own previous transmission or the clocks are off, std::invalid_argument if
+  // `start` is in the past. Whether the telegram is allowed (ENTMT etc.) is the caller's
+  // business; output enables, test modes and polarity are this unit's.
+  sim::Time send(sim::Time start, std::uint8_t address, std::span<const std::uint8_t> data);
+  // How long send() would keep the line busy (flags, stuffing included) at the present rate.
+  sim::Time burst_duration(std::uint8_t address, std::span<const std::uint8_t> data) const;
+  // End of the last own telegram (0 before the first): the earliest start for the next.
+  sim::Time transmit_free_at() const;
+
+  // --- receiver events, called at the simulated time they happen -------------------------
+  // Once the address byte is in: opening flag + address (with stuffing) + pipeline delay.
+  void on_telegram_start(TelegramStartHandler handler);
+  // At ReceivedTelegram::detected, for every frame the decoder reports (errors included).
+  void on_telegram(TelegramHandler handler);
+
+  // --- ring side -------------------------------------------------------------------------
+  LineListener& rxd();  // fibres / buses deliver here
+  // TxDn (n = 1..6) -> a fibre / bus input. The listener is told the present condition at
+  // once. Replaces an earlier listener on that pin. std::out_of_range for other n.
+  void connect_txd(unsigned pin, LineListener& listener);
+  void disconnect_txd(unsigned pin);
+
+  // Bursts the receiver decoded itself; a burst whose bits were already decoded (by this
+  // or any other chip) is served from the shared memo. For tests and benchmarks.
+  static std::size_t decode_count();
+
+  // The parts, for each other (src/chip/serial_unit_*.cpp).
+  Chip& chip() { return chip_; }
+  SerialTransmitter& transmitter() { return *transmitter_; }
+  SerialReceiver& receiver() { return *receiver_; }
+  SerialRepeater& repeater() { return *repeater_; }
+  LineMonitor& monitor() { return *monitor_; }
+
+ private:
+  Chip& chip_;
+  std::unique_ptr<SerialTransmitter> transmitter_;
+  std::unique_ptr<LineMonitor> monitor_;
+  std::unique_ptr<SerialReceiver> receiver_;
+  std::unique_ptr<SerialRepeater> repeater_;
+};
+
+}  // namespace sercon::chip
