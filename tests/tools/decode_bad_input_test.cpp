@@ -1,0 +1,128 @@
+// Requirement: bad input ends with a clear message naming the problem and a non-zero exit
+// status (issue "sercon decode"): unreadable file, unknown extension, wrong format content,
+// no such signal, several candidate signals, no edges, impossible rate, bits without
+// --rate. A readable capture with broken telegrams exits 0 (decode_end_to_end_test.cpp).
+#include <gtest/gtest.h>
+
+#include "run_sercon.hpp"
+#include "sercon/wire/encoder.hpp"
+#include "test_files.hpp"
+#include "test_lines.hpp"
+
+namespace sercon::testing {
+namespace {
+
+class DecodeBadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    line_ = phase_walk_line().bits;
+    write_file(dir_ / "good.bits", std::string(line_.packed().begin(), line_.packed().end()));
+    write_file(dir_ / "good.vcd", vcd_for_line(line_, 250'000));
+    write_sr(dir_ / "good.sr", sr_metadata("8 MHz", {"RX"}), oversample(line_, 2));
+  }
+
+  // Runs decode, expects failure with a message containing every piece of `expected`.
+  void expect_failure(const std::vector<std::string>& args,
+                      const std::vector<std::string>& expected) {
+    std::vector<std::string> full{"decode"};
+    full.insert(full.end(), args.begin(), args.end());
+    const RunResult r = run_sercon(full);
+    EXPECT_NE(r.status, 0) << r.out;
+    EXPECT_GT(r.status, 0) << "a crash is not an error message";
+    for (const std::string& piece : expected) {
+      EXPECT_NE(r.err.find(piece), std::string::npos) << "expected '" << piece << "' in: " << r.err;
+    }
+  }
+
+  std::string path(const char* name) const { return (dir_ / name).string(); }
+
+  wire::LineBits line_;
+  TempDir dir_;
+};
+
+TEST_F(DecodeBadInput, UnreadableFile) {
+  expect_failure({"--rate", "4M", path("missing.bits")}, {"cannot read", "missing.bits"});
+  expect_failure({"--rate", "4M", dir_.path().string()}, {"is a directory"});
+}
+
+TEST_F(DecodeBadInput, UnknownOrMissingExtension) {
+  write_file(dir_ / "capture.txt", "x");
+  expect_failure({path("capture.txt")}, {"unknown extension '.txt'", "--format"});
+  write_file(dir_ / "capture", "x");
+  expect_failure({path("capture")}, {"has no extension", "--format"});
+}
+
+TEST_F(DecodeBadInput, UnknownFormatOption) {
+  expect_failure({"--format", "csv", path("good.bits")}, {"--format", "csv"});
+}
+
+TEST_F(DecodeBadInput, WrongFormatContent) {
+  expect_failure({"--format", "vcd", path("good.bits")}, {"good.bits", "not a VCD text file"});
+  expect_failure({"--format", "sr", path("good.vcd")}, {"good.vcd", "not a zip archive"});
+  expect_failure({"--format", "bits", "--rate", "4M", path("good.vcd")}, {"VCD text file"});
+  expect_failure({"--format", "bits", "--rate", "4M", path("good.sr")}, {"zip archive"});
+  write_zip(dir_ / "other.sr", {{"readme.txt", "hello"}});
+  expect_failure({path("other.sr")}, {"not a sigrok session file"});
+}
+
+TEST_F(DecodeBadInput, NoSuchSignal) {
+  expect_failure({"--signal", "tx", path("good.vcd")}, {"no signal named 'tx'", "top.rx"});
+  expect_failure({"--signal", "TX", path("good.sr")}, {"no channel named 'TX'", "RX"});
+  expect_failure({"--signal", "rx", "--rate", "4M", path("good.bits")},
+                 {"--signal does not apply"});
+}
+
+TEST_F(DecodeBadInput, SeveralCandidateSignals) {
+  std::string vcd = vcd_for_line(line_, 250'000);
+  vcd.replace(vcd.find("$upscope"), 0, "$var wire 1 \" tx $end\n");
+  write_file(dir_ / "two.vcd", vcd);
+  expect_failure({path("two.vcd")}, {"several 1-bit signals: top.rx, top.tx", "--signal"});
+  write_sr(dir_ / "two.sr", sr_metadata("8 MHz", {"RX", "TX"}), oversample(line_, 2));
+  expect_failure({path("two.sr")}, {"several logic channels: RX, TX", "--signal"});
+}
+
+TEST_F(DecodeBadInput, NoOneBitSignal) {
+  write_file(dir_ / "bus.vcd",
+             "$timescale 1 ns $end\n$var wire 8 ! bus $end\n$enddefinitions $end\n#0 b0 !\n");
+  expect_failure({path("bus.vcd")}, {"no 1-bit signal", "bus (8 bits)"});
+}
+
+TEST_F(DecodeBadInput, NoEdges) {
+  write_file(dir_ / "flat.vcd",
+             "$timescale 1 ns $end\n$var wire 1 ! rx $end\n$enddefinitions $end\n#0 1!\n#1000\n");
+  expect_failure({path("flat.vcd")}, {"has no edges", "rx"});
+  write_sr(dir_ / "flat.sr", sr_metadata("8 MHz", {"RX"}), std::string(1000, '\0'));
+  expect_failure({path("flat.sr")}, {"has no edges", "RX"});
+}
+
+TEST_F(DecodeBadInput, ImpossibleRate) {
+  expect_failure({"--rate", "3M", path("good.bits")},
+                 {"impossible bit rate '3M'", "2M, 4M, 8M or 16M"});
+  expect_failure({"--rate", "fast", path("good.vcd")}, {"impossible bit rate 'fast'"});
+  // 8 MHz sampling (2 samples per 4 Mbit/s bit) cannot carry 16 Mbit/s.
+  expect_failure({"--rate", "16M", path("good.sr")},
+                 {"impossible bit rate 16 Mbit/s", "2 samples per bit"});
+}
+
+TEST_F(DecodeBadInput, RateThatNoSercosRateExplains) {
+  // 1 Mbit/s: edges every 1 us are not within 10% of any SERCOS bit time.
+  write_file(dir_ / "slow.vcd", vcd_for_line(line_, 1'000'000));
+  expect_failure({path("slow.vcd")}, {"cannot recover the bit clock", "top.rx", "--rate"});
+}
+
+TEST_F(DecodeBadInput, BitsWithoutRate) {
+  expect_failure({path("good.bits")}, {"bits format carries no timing", "--rate"});
+}
+
+TEST_F(DecodeBadInput, NoFrameAtAll) {
+  wire::LineEncoder idle_only;
+  idle_only.idle(4000);
+  const wire::LineBits bits = idle_only.take();
+  write_file(dir_ / "idle.bits", std::string(bits.packed().begin(), bits.packed().end()));
+  expect_failure({"--rate", "4M", path("idle.bits")}, {"no SERCOS frame found", "idle.bits"});
+}
+
+TEST_F(DecodeBadInput, MissingFileArgument) { expect_failure({}, {"FILE"}); }
+
+}  // namespace
+}  // namespace sercon::testing
