@@ -1,8 +1,9 @@
 // libFuzzer target for the line decoder: random bytes are a line (packed levels, MSB
-// first). Checks that chunked feeding (LineBits chunks and packed-byte chunks) reports
-// exactly what whole feeding does, that frames are ordered and inside the input, and that
-// a frame without error carries a matching FCS. The same bytes as a telegram must also
-// survive an encode/decode round trip.
+// first). Checks that the table-driven decoder agrees with the independent reference
+// decoder of the tests (tests/wire/reference_decoder.hpp), that chunked feeding (LineBits chunks
+// and packed-byte chunks) reports exactly what whole feeding does, that frames are ordered and
+// inside the input, and that a frame without error carries a matching FCS. The same bytes as a
+// telegram must also survive an encode/decode round trip.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include "sercon/wire/encoder.hpp"
 #include "sercon/wire/fcs.hpp"
 #include "sercon/wire/line_bits.hpp"
+#include "wire/reference_decoder.hpp"
 
 namespace {
 
@@ -69,6 +71,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const LineBits line = LineBits::from_packed({bytes.begin(), bytes.end()}, bit_count);
   const std::vector<DecodedFrame> whole = sercon::wire::decode_all(line);
   check_invariants(whole, bit_count);
+  const std::vector<DecodedFrame> reference = sercon::wire::test::reference_decode(line);
+  check(reference.size() == whole.size(), "reference decoder finds the same number of frames");
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    check(same(whole[i], reference[i]), "reference decoder reports the same frame");
 
   // Chunk sizes from a tiny generator seeded by the input, so runs are reproducible.
   std::uint32_t seed = 2166136261u;

@@ -1,92 +1,92 @@
 // Streaming line decoder. Per 64 line bits: NRZI decode in one step (a bit is 1 when the
-// level equals the one before it). Then per decoded byte one table lookup does flag
-// hunting or destuffing; only bytes in which a run reaches six 1s (flag or abort) or a
-// flag completes take the bit-by-bit path.
+// level equals the one before it). Then 8 decoded bits at a time (at any bit offset) go
+// through one table lookup that hunts for flags or destuffs, and that reports where in
+// the window a flag or abort happened, so events cost one lookup too.
 #include "sercon/wire/decoder.hpp"
 
 #include <array>
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "receive_rules.hpp"
 #include "sercon/wire/fcs.hpp"
 
 namespace sercon::wire {
 namespace {
 
-constexpr unsigned kSaturated = 7;      // run of 1s: seven or more (idle, abort, start)
-constexpr unsigned kEvent = 0xF;        // frame-table count field: take the slow path
-constexpr unsigned kMinFrameBytes = 4;  // address + 1 data byte + 2 FCS bytes
+using detail::Action;
+using detail::kSaturated;
+using detail::RxState;
 
-// Hunting (no frame open): entry = run after the byte (bits 0..2), bit 7 set when a flag
-// (0 after exactly six 1s) completes inside the byte.
-constexpr std::array<std::uint8_t, 8 * 256> make_hunt_table() {
-  std::array<std::uint8_t, 8 * 256> table{};
-  for (unsigned run0 = 0; run0 < 8; ++run0) {
-    for (unsigned byte = 0; byte < 256; ++byte) {
-      unsigned run = run0;
-      unsigned event = 0;
-      for (int i = 7; i >= 0; --i) {  // decoded bits are MSB first (time order)
-        if ((byte >> i) & 1u) {
-          if (run < kSaturated) ++run;
-        } else {
-          if (run == 6) event = 1;
-          run = 0;
-        }
-      }
-      table[run0 * 256 + byte] = static_cast<std::uint8_t>(run | (event << 7));
-    }
-  }
-  return table;
+constexpr std::size_t kMinFrameBytes = 4;  // address + 1 data byte + 2 FCS bytes
+
+// One state machine for hunting and destuffing. State index: 0..7 hunting with that run
+// of 1s; 8 + (run | zero_emitted << 3) inside a frame (run 0..6).
+constexpr unsigned kFrameStates = 8;
+constexpr unsigned kStates = 24;
+
+constexpr unsigned state_index(bool in_frame, RxState s) {
+  return in_frame ? kFrameStates + (s.run | (s.zero_emitted ? 8u : 0u)) : s.run;
 }
 
-// In a frame, for state = run (0..5) | zero_emitted << 3: the surviving bits in time
-// order from bit 0 (bits 0..7), their count (bits 8..11, kEvent if a run reaches six 1s)
-// and the state after the byte (bits 12..15).
-constexpr std::array<std::uint16_t, 16 * 256> make_frame_table() {
-  std::array<std::uint16_t, 16 * 256> table{};
-  for (unsigned state = 0; state < 16; ++state) {
-    for (unsigned byte = 0; byte < 256; ++byte) {
-      unsigned run = state & 7u;
-      unsigned zero_emitted = state >> 3;
-      unsigned out = 0;
-      unsigned count = 0;
-      bool event = run > 5;
-      for (int i = 7; i >= 0 && !event; --i) {
-        if ((byte >> i) & 1u) {
-          if (++run == 6) {
-            event = true;
-          } else {
-            out |= 1u << count++;
-          }
-        } else {
-          if (run == 5) {
-            zero_emitted = 0;  // stuffed 0 (sercos-facts §1): dropped
-          } else {
-            ++count;  // a data 0
-            zero_emitted = 1;
-          }
-          run = 0;
-        }
-      }
-      table[state * 256 + byte] =
-          event
-              ? static_cast<std::uint16_t>(kEvent << 8)
-              : static_cast<std::uint16_t>(out | (count << 8) | ((run | zero_emitted << 3) << 12));
+// Table entry for (state, 8 decoded bits MSB first):
+//   bits 0..7   the bits delivered to the frame, first at bit 0
+//   bits 8..11  how many
+//   bits 12..16 state index afterwards (after the event, if any)
+//   bits 17..18 event: 0 none, 1 flag, 2 abort; bits 19..21 the window bit it happened at
+//   bit 22      zero_emitted at a flag (was the 0 before its six 1s frame data?)
+constexpr std::uint32_t kFlagEvent = 1;
+constexpr std::uint32_t kAbortEvent = 2;
+
+constexpr std::uint32_t make_entry(unsigned state, unsigned window) {
+  bool in_frame = state >= kFrameStates;
+  RxState s = in_frame ? RxState{(state - kFrameStates) & 7u, (state - kFrameStates) >= 8}
+                       : RxState{state, false};
+  std::uint32_t out = 0;
+  std::uint32_t count = 0;
+  std::uint32_t event = 0;
+  std::uint32_t at = 0;
+  std::uint32_t flag_zero = 0;
+  for (unsigned i = 0; i < 8 && event == 0; ++i) {
+    const unsigned bit = (window >> (7 - i)) & 1u;
+    const Action a = in_frame ? detail::frame_step(s, bit) : detail::hunt_step(s, bit);
+    if (a == Action::Emit0 || a == Action::Emit1) out |= (a == Action::Emit1 ? 1u : 0u) << count++;
+    if (a == Action::Flag) {
+      event = kFlagEvent;
+      flag_zero = s.zero_emitted ? 1 : 0;
+      in_frame = true;  // every flag opens a frame
+      s = {0, false};
     }
+    if (a == Action::Abort) {
+      event = kAbortEvent;
+      in_frame = false;
+    }
+    at = i;
   }
-  return table;
+  return out | count << 8 | state_index(in_frame, s) << 12 | event << 17 | at << 19 |
+         flag_zero << 22;
 }
 
-constexpr std::array<std::uint8_t, 8 * 256> kHunt = make_hunt_table();
-constexpr std::array<std::uint16_t, 16 * 256> kFrame = make_frame_table();
+constexpr std::array<std::uint32_t, kStates * 256> make_table() {
+  std::array<std::uint32_t, kStates * 256> t{};
+  for (unsigned state = 0; state < kStates; ++state)
+    if (state < kFrameStates || ((state - kFrameStates) & 7u) <= 6)
+      for (unsigned w = 0; w < 256; ++w) t[state * 256 + w] = make_entry(state, w);
+  return t;
+}
+
+constexpr std::array<std::uint32_t, kStates* 256> kTable = make_table();
 
 std::uint64_t load_be(const std::uint8_t* p) {
   std::uint64_t v;
   std::memcpy(&v, p, 8);
   return __builtin_bswap64(v);
 }
+
+std::uint64_t top_mask(unsigned n) { return n == 0 ? 0 : ~std::uint64_t{0} << (64 - n); }
 
 }  // namespace
 
@@ -142,107 +142,126 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
   }
   // NRZI (sercos-facts §1): decoded 1 = no level change from the previous bit.
   const std::uint64_t before = (levels >> 1) | (static_cast<std::uint64_t>(last_level_) << 63);
-  const std::uint64_t decoded = ~(levels ^ before);
+  const std::uint64_t decoded = ~(levels ^ before) & top_mask(count);
   last_level_ = ((levels >> (64 - count)) & 1u) != 0;
 
-  unsigned k = 0;
-  for (; k + 8 <= count; k += 8) {
-    const unsigned byte = static_cast<unsigned>(decoded >> (56 - k)) & 0xFFu;
-    if (!in_frame_) {
-      const std::uint8_t e = kHunt[run_ * 256 + byte];
-      if ((e & 0x80u) == 0) {
-        run_ = e & 7u;
-        continue;
-      }
-    } else if (run_ <= 5) {
-      const unsigned e = kFrame[(run_ | (zero_emitted_ ? 8u : 0u)) * 256 + byte];
-      const unsigned n = (e >> 8) & 0xFu;
-      if (n != kEvent) {
-        emit(e & 0xFFu, n);
-        run_ = (e >> 12) & 7u;
-        zero_emitted_ = (e & 0x8000u) != 0;
-        continue;
-      }
+  // The stream to work on: pending bits, then this word; up to 71 bits in hi:lo.
+  const unsigned n = pending_count_;
+  const std::uint64_t hi = pending_ | (decoded >> n);
+  const std::uint64_t lo = n == 0 ? 0 : decoded << (64 - n);
+  const unsigned total = n + count;
+  const std::size_t base = pos_ - n;  // line position of hi's first bit
+  // 64 bits from stream bit cur (windows start at <= 63; the leftover may start at 64+).
+  auto bits_at = [hi, lo](unsigned cur) {
+    if (cur == 0) return hi;
+    return cur < 64 ? (hi << cur) | (lo >> (64 - cur)) : lo << (cur - 64);
+  };
+
+  // The hot loop keeps the state in locals; events write it back for the handlers.
+  unsigned state = state_index(in_frame_, {run_, zero_emitted_});
+  std::uint64_t acc = acc_;
+  unsigned acc_bits = acc_bits_;
+  unsigned cur = 0;
+  while (cur + 8 <= total) {
+    const unsigned state_before = state;
+    const std::uint32_t e = kTable[state * 256 + static_cast<unsigned>(bits_at(cur) >> 56)];
+    acc |= static_cast<std::uint64_t>(e & 0xFFu) << acc_bits;
+    acc_bits += (e >> 8) & 0xFu;
+    state = (e >> 12) & 0x1Fu;
+    if (acc_bits >= 32) {
+      acc_ = acc;
+      acc_bits_ = acc_bits;
+      store_acc();
+      acc = acc_;
+      acc_bits = acc_bits_;
     }
-    slow_byte(byte, 8, pos_ + k);
+    const std::uint32_t event = (e >> 17) & 3u;
+    if (event == 0) {
+      cur += 8;
+      continue;
+    }
+    const unsigned at = (e >> 19) & 7u;
+    acc_ = acc;
+    acc_bits_ = acc_bits;
+    in_frame_ = state_before >= kFrameStates;  // the mode the event happened in
+    if (event == kFlagEvent) {
+      on_flag(base + cur + at, ((e >> 22) & 1u) != 0);
+    } else {
+      on_abort(base + cur + at);
+    }
+    acc = acc_;
+    acc_bits = acc_bits_;
+    cur += at + 1;
   }
-  if (k < count) {
-    const unsigned rest = count - k;
-    slow_byte(static_cast<unsigned>(decoded >> (64 - k - rest)) & ((1u << rest) - 1u), rest,
-              pos_ + k);
-  }
+  in_frame_ = state >= kFrameStates;
+  run_ = in_frame_ ? (state - kFrameStates) & 7u : state;
+  zero_emitted_ = in_frame_ && (state - kFrameStates) >= 8;
+  acc_ = acc;
+  acc_bits_ = acc_bits;
+  pending_count_ = total - cur;
+  pending_ = bits_at(cur) & top_mask(pending_count_);
   pos_ += count;
 }
 
-void LineDecoder::slow_byte(std::uint32_t decoded_msb_first, unsigned count,
+void LineDecoder::on_flag(std::size_t pos, bool zero_emitted) {
+  // Flag 0 111111 0 ends at pos. Its leading 0 and the first five 1s went into the frame
+  // as data (unless that 0 was itself a stuffed or flag 0): take them back.
+  if (in_frame_)
+    close_frame(pos + 1, emitted_bits() - 5 - (zero_emitted ? 1 : 0), FrameError::None);
+  open_frame(pos - 7);
+  run_ = 0;
+  zero_emitted_ = false;
+}
+
+void LineDecoder::on_abort(std::size_t pos) {
+  // Seven 1s cannot occur in a frame (sercos-facts §1). The five 1s already taken as data
+  // belong to the abort run.
+  close_frame(pos + 1, emitted_bits() - 5, FrameError::Abort);
+  run_ = kSaturated;
+}
+
+void LineDecoder::tail_bits(std::uint64_t decoded_msb_first, unsigned count,
                             std::size_t first_pos) {
   for (unsigned i = 0; i < count; ++i) {
-    if ((decoded_msb_first >> (count - 1 - i)) & 1u)
-      on_one(first_pos + i);
-    else
-      on_zero(first_pos + i);
+    const unsigned bit = static_cast<unsigned>(decoded_msb_first >> (63 - i)) & 1u;
+    RxState s{run_, zero_emitted_};
+    const Action a = in_frame_ ? detail::frame_step(s, bit) : detail::hunt_step(s, bit);
+    run_ = s.run;
+    zero_emitted_ = s.zero_emitted;
+    if (a == Action::Emit0 || a == Action::Emit1) emit(a == Action::Emit1 ? 1u : 0u, 1);
+    if (a == Action::Flag) on_flag(first_pos + i, s.zero_emitted);
+    if (a == Action::Abort) on_abort(first_pos + i);
   }
 }
 
-void LineDecoder::on_one(std::size_t pos) {
-  if (run_ == kSaturated) return;
-  ++run_;
-  if (!in_frame_) return;
-  if (run_ <= 5) {
-    emit(1, 1);
-  } else if (run_ == kSaturated) {
-    // Seven 1s cannot occur in a frame (sercos-facts §1): abort. The five 1s already
-    // taken as data belong to the abort run.
-    close_frame(pos + 1, emitted_bits() - 5, FrameError::Abort);
-  }
-}
-
-void LineDecoder::on_zero(std::size_t pos) {
-  if (run_ == 5) {
-    zero_emitted_ = false;  // stuffed 0 (sercos-facts §1): dropped
-  } else if (run_ == 6) {
-    // Flag 0 111111 0 ends here. Its leading 0 and the first five 1s went into the
-    // frame as data (unless that 0 was itself a stuffed or flag 0): take them back.
-    if (in_frame_)
-      close_frame(pos + 1, emitted_bits() - 5 - (zero_emitted_ ? 1 : 0), FrameError::None);
-    open_frame(pos - 7);
-  } else if (run_ == kSaturated || !in_frame_) {
-    zero_emitted_ = false;
-  } else {
-    emit(0, 1);
-    zero_emitted_ = true;
-  }
-  run_ = 0;
-}
-
-void LineDecoder::emit(std::uint32_t lsb_first_bits, unsigned count) {
-  acc_ |= static_cast<std::uint64_t>(lsb_first_bits) << acc_bits_;
-  acc_bits_ += count;
-  if (acc_bits_ >= 8) {
-    bytes_.push_back(static_cast<std::uint8_t>(acc_ & 0xFFu));
-    acc_ >>= 8;
-    acc_bits_ -= 8;
-  }
+void LineDecoder::store_acc() {
+  std::uint32_t low = static_cast<std::uint32_t>(acc_);
+  std::memcpy(bytes_.data() + nbytes_, &low, 4);  // little endian: first bits first
+  static_assert(std::endian::native == std::endian::little);
+  nbytes_ += 4;
+  acc_ >>= 32;
+  acc_bits_ -= 32;
+  if (nbytes_ + 8 > bytes_.size()) bytes_.resize(bytes_.size() * 2);
 }
 
 void LineDecoder::open_frame(std::size_t start_bit) {
   in_frame_ = true;
   frame_start_ = start_bit;
-  bytes_.clear();
+  nbytes_ = 0;
   acc_ = 0;
   acc_bits_ = 0;
-  zero_emitted_ = false;
 }
 
 void LineDecoder::close_frame(std::size_t end_bit, std::size_t frame_bits, FrameError forced) {
   in_frame_ = false;
   if (frame_bits < 8) return;  // inter-frame fill, back-to-back flags: not a frame
   const std::size_t n = frame_bits / 8;
-  bytes_.resize(n);  // drops bits that turned out to be the closing flag's
+  std::memcpy(bytes_.data() + nbytes_, &acc_, 8);  // the last partial word (room kept)
+  const std::uint8_t* b = bytes_.data();           // b[0, n): bits of the closing flag dropped
   DecodedFrame& f = frame_;
   f.start_bit = frame_start_;
   f.end_bit = end_bit;
-  f.address = bytes_[0];
+  f.address = b[0];
   f.fcs_received = 0;
   f.fcs_computed = 0;
   f.error = forced;
@@ -253,24 +272,27 @@ void LineDecoder::close_frame(std::size_t end_bit, std::size_t frame_bits, Frame
       f.error = FrameError::TooShort;
   }
   if (f.error == FrameError::None) {
-    f.data.assign(bytes_.begin() + 1, bytes_.end() - 2);
-    f.fcs_received = static_cast<std::uint16_t>(bytes_[n - 2] | bytes_[n - 1] << 8);
-    f.fcs_computed = fcs16(std::span<const std::uint8_t>(bytes_.data(), n - 2));
+    f.data.assign(b + 1, b + n - 2);
+    f.fcs_received = static_cast<std::uint16_t>(b[n - 2] | b[n - 1] << 8);
+    f.fcs_computed = fcs16(std::span<const std::uint8_t>(b, n - 2));
     if (f.fcs_received != f.fcs_computed) f.error = FrameError::BadFcs;
   } else {
-    f.data.assign(bytes_.begin() + 1, bytes_.end());
+    f.data.assign(b + 1, b + n);
   }
   sink_(f);
 }
 
 void LineDecoder::finish() {
+  tail_bits(pending_, pending_count_, pos_ - pending_count_);
   if (in_frame_) close_frame(pos_, emitted_bits(), FrameError::Truncated);
   pos_ = 0;
   have_level_ = false;
+  pending_ = 0;
+  pending_count_ = 0;
   run_ = kSaturated;
   zero_emitted_ = false;
   in_frame_ = false;
-  bytes_.clear();
+  nbytes_ = 0;
   acc_ = 0;
   acc_bits_ = 0;
 }

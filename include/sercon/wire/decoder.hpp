@@ -71,27 +71,36 @@ class LineDecoder {
 
  private:
   void feed_word(std::uint64_t levels, unsigned count);
-  void slow_byte(std::uint32_t decoded_msb_first, unsigned count, std::size_t first_pos);
-  void on_one(std::size_t pos);
-  void on_zero(std::size_t pos);
-  void emit(std::uint32_t lsb_first_bits, unsigned count);
+  void tail_bits(std::uint64_t decoded_msb_first, unsigned count, std::size_t first_pos);
+  void on_flag(std::size_t pos, bool zero_emitted);
+  void on_abort(std::size_t pos);
+  void emit(std::uint32_t lsb_first_bits, unsigned count) {
+    acc_ |= static_cast<std::uint64_t>(lsb_first_bits) << acc_bits_;
+    acc_bits_ += count;
+    if (acc_bits_ >= 32) store_acc();
+  }
+  void store_acc();
   void close_frame(std::size_t end_bit, std::size_t frame_bits, FrameError forced);
   void open_frame(std::size_t start_bit);
-  std::size_t emitted_bits() const { return bytes_.size() * 8 + acc_bits_; }
+  std::size_t emitted_bits() const { return nbytes_ * 8 + acc_bits_; }
 
   Sink sink_;
   std::size_t pos_ = 0;      // line bits consumed
   bool have_level_ = false;  // false until the first bit fixes the reference level
   bool last_level_ = false;
+  // Decoded bits not yet through the tables (< 8), MSB first: a window needs 8 bits.
+  std::uint64_t pending_ = 0;
+  unsigned pending_count_ = 0;
   // Destuffer state: run of 1s (7 = saturated: idle, abort, unknown start) and whether the
   // 0 before the run was delivered to the frame as data.
   unsigned run_ = 7;
   bool zero_emitted_ = false;
-  // Open frame.
+  // Open frame: bytes_[0, nbytes_) plus acc_bits_ bits in acc_ (first bit at bit 0).
   bool in_frame_ = false;
   std::size_t frame_start_ = 0;
-  std::vector<std::uint8_t> bytes_;
-  std::uint64_t acc_ = 0;  // bits not yet forming a byte, first bit at bit 0
+  std::vector<std::uint8_t> bytes_ = std::vector<std::uint8_t>(64);  // >= nbytes_ + 8
+  std::size_t nbytes_ = 0;
+  std::uint64_t acc_ = 0;
   unsigned acc_bits_ = 0;
   DecodedFrame frame_;  // reused for every report so its data keeps its capacity
 };
