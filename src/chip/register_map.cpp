@@ -21,7 +21,8 @@ constexpr BitField kVersion[] = {
 
 constexpr BitField kSerialMode[] = {
     {"RSTFL", 0, 1, RW, 1, Both, Facts,
-     "Reset flag: set by every reset (RSTN, SWRST, OUTZ, watchdog never); the host clears it "
+     "Reset flag: set by every reset (RSTN, SWRST, OUTZ; the watchdog resets the µP, not the "
+     "chip); the host clears it "
      "by writing 0"},
     {"SWRST", 1, 1, W, 0, Both, Facts, "Write 1: software reset (as RSTN, RAM kept); reads 0"},
     {"REPON", 3, 1, RW, 1, Only816, DeltaSpec,
