@@ -1,0 +1,48 @@
+// The CON_CLK output (datasheet Table 1: "becomes active within a communication cycle.
+// Time, polarity and width are programmable"; docs/timing.md, "CON_CLK"). Planned at each
+// cycle start: active from cycle time TCONCLK (0x1A) for WCONCLK (0x1B) µs, i.e.
+// WCONCLK * (MCLKDIV + 1) MCLK periods; WCONCLK = 0 never; a start at or after the cycle
+// time TSCYC is dropped. POLCONCLK (0x1C bit 0): 0 active high, 1 active low. INT_CONCLK
+// when it becomes active. A start while still active restarts the width.
+#pragma once
+
+#include <functional>
+
+#include "sercon/chip/chip_unit.hpp"
+#include "sercon/chip/field_ref.hpp"
+#include "sercon/chip/interrupts.hpp"
+#include "sercon/chip/tick_alarm.hpp"
+#include "sercon/chip/time_base.hpp"
+
+namespace sercon::chip {
+
+class Chip;
+
+class ConClk : public ChipUnit {
+ public:
+  using Output = std::function<void(bool high)>;
+
+  explicit ConClk(Chip& chip);
+  ConClk(TimeBase& time_base, Interrupts& interrupts, Output pin);
+
+  void reset(ResetCause cause) override;
+
+  bool active() const { return active_; }
+
+ private:
+  void plan(const CycleStart& start);
+  void starts();
+  void ends();
+  void drive();
+
+  TimeBase& time_base_;
+  RegisterFile& regs_;
+  Interrupts& interrupts_;
+  Output pin_;
+  FieldRef polconclk_;
+  bool active_ = false;
+  TimeBase::CycleEvent planned_ = 0;
+  TickAlarm end_;
+};
+
+}  // namespace sercon::chip

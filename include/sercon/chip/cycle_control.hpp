@@ -1,0 +1,85 @@
+// Who starts SERCOS cycles (docs/timing.md, "Cycle start").
+//
+// Slave (REGMODE = 0): the telegram processor reports each MST it recognises through
+// mst_detected(); 3 to 4 MCLK periods later (synchroniser) the cycle counter is loaded
+// with TCNTST and INT_CYCST is raised. The JTSCYC window judges each MST; when a window
+// closes empty the chip free-wheels a substitute cycle.
+// Master (REGMODE = 1): cycles start from the internal timer every TSCYC µs (PRESYNC = 0)
+// or at each active CYC_CLK edge (PRESYNC = 1, edge by CYCPOL, judged by the window).
+// At a cycle start the counter is loaded with TCNTST; TCYCSTART µs later the MST is due:
+// INT_CYCST is raised and the on_send_mst listeners (telegram processor, watchdog) run.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "sercon/chip/chip_unit.hpp"
+#include "sercon/chip/cycle_window.hpp"
+#include "sercon/chip/field_ref.hpp"
+#include "sercon/chip/interrupts.hpp"
+#include "sercon/chip/tick_alarm.hpp"
+#include "sercon/chip/time_base.hpp"
+#include "sercon/sim/signal.hpp"
+
+namespace sercon::chip {
+
+class Chip;
+
+class CycleControl : public ChipUnit {
+ public:
+  enum class Mode : std::uint8_t { Slave, MasterTimer, MasterCycClk };
+
+  explicit CycleControl(Chip& chip);
+  CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Signal& cyc_clk);
+  ~CycleControl() override;
+
+  void reset(ResetCause cause) override;
+  void release() override;
+
+  // Slave entry point for the telegram processor: the serial receiver has recognised an
+  // MST at `when` (>= now; std::invalid_argument otherwise). That is 5.5 bit times after
+  // the end of the MST, the delay the driver's TCNTST compensates (facts §5). Ignored in
+  // master mode when the load would happen, and while the chip is in reset.
+  void mst_detected(sim::Time when);
+  // Master: "send the MST now", TCYCSTART µs after each cycle start.
+  void on_send_mst(std::function<void()> listener);
+
+  Mode mode() const { return mode_; }
+  const CycleWindow& window() const { return window_; }
+
+ private:
+  Mode mode_from_registers() const;
+  void switch_mode(Mode mode);
+  void on_register_change(std::uint8_t address);
+  void on_cyc_clk(sim::Level level);
+  void after_edges(sim::Time from, Edge edges, void (CycleControl::*action)());
+  void start_timer_now();
+  void master_cycle_start();
+  void cyc_clk_recognised();
+  void slave_mst();
+  void send_mst();
+  void on_cycle_start(const CycleStart& start);
+  void on_divider_change(Edge edge, std::int64_t period);
+  void cancel_own_events();
+  void cancel_all();
+
+  TimeBase& time_base_;
+  RegisterFile& regs_;
+  sim::Scheduler& scheduler_;
+  Interrupts& interrupts_;
+  sim::Signal& cyc_clk_;
+  FieldRef regmode_, presync_, cycpol_;
+  CycleWindow window_;
+  bool running_ = false;
+  Mode mode_ = Mode::Slave;
+  bool cyc_clk_high_ = true;
+  bool timer_idle_ = false;   // master timer waiting for a non-zero TSCYC
+  DividerTicks cycle_ticks_;  // master: restarted at each cycle start
+  TickAlarm next_cycle_;
+  TickAlarm mst_send_;
+  std::vector<sim::Scheduler::EventId> recognitions_;  // MSTs / CYC_CLK edges in the synchroniser
+  std::vector<std::function<void()>> send_mst_listeners_;
+};
+
+}  // namespace sercon::chip

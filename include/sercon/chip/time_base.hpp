@@ -1,0 +1,123 @@
+// The chip's µs time base and cycle counter (docs/timing.md, "Time base").
+//
+// MCLKDIV divides MCLK into the µs tick: T_tick = (MCLKDIV + 1) / f_MCLK. The cycle
+// counter (TCNT, 0x12) counts those ticks. At every cycle start it is loaded with TCNTST
+// and its divider restarts from MCLKST: the first tick comes MCLKST MCLK periods later,
+// then one every MCLKDIV + 1. The counter steps from c to c + 1 at "cycle time c": with
+// the driver formulas (facts §5) that is c µs after the end of the MST, to within one
+// MCLK period. Nothing is ticked: the counter is computed from the time when read, and
+// only the events other units ask for (at_cycle_time) are scheduled.
+//
+// A second, free-running MCLKDIV divider (never restarted by cycle starts) times WDOGN.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "sercon/chip/chip_unit.hpp"
+#include "sercon/chip/field_ref.hpp"
+#include "sercon/chip/mclk_divider.hpp"
+#include "sercon/chip/register_file.hpp"
+#include "sercon/sim/scheduler.hpp"
+
+namespace sercon::chip {
+
+class Chip;
+
+enum class CycleKind : std::uint8_t {
+  Mst,         // slave: an MST was detected
+  Substitute,  // slave: no MST in the window, the chip free-wheels (docs/timing.md)
+  Master,      // master: cycle start from the internal timer or from CYC_CLK
+};
+
+struct CycleStart {
+  CycleKind kind;
+  std::int64_t count;   // counter value right after the start
+  std::uint16_t tscyc;  // cycle time (µs) of the phase in force; 0 = not programmed
+};
+
+class TimeBase : public ChipUnit {
+ public:
+  using CycleEvent = std::uint64_t;  // 0 names no event
+
+  explicit TimeBase(Chip& chip);
+  TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, sim::Time mclk_period);
+  // Cancels every pending cycle-time event, also those other units asked for.
+  ~TimeBase() override;
+
+  void reset(ResetCause cause) override;
+  void release() override;
+
+  sim::Scheduler& scheduler() const { return scheduler_; }
+  RegisterFile& regs() const { return regs_; }
+  const MclkGrid& mclk() const { return mclk_; }
+  // MCLK periods per µs tick (MCLKDIV + 1) and the tick's length in picoseconds.
+  std::int64_t tick_period() const { return divider_ + 1; }
+  sim::Time tick_duration() const { return tick_period() * mclk_.period(); }
+
+  // The counter now, not wrapped (TCNT reads it modulo 2^16); 0 while held in reset.
+  std::int64_t count() const;
+  std::uint16_t tcnt() const { return static_cast<std::uint16_t>(count() & 0xFFFF); }
+  // TSCYC0 in phases 0..2, TSCYC1 in phases 3..7. The phase is PHAS0 (the byte a master
+  // sends) in master mode and PHASR (the byte of the last MST received) in slave mode.
+  std::uint16_t tscyc() const;
+
+  // A cycle starts now (called at an MCLK edge): the counter is loaded with TCNTST and
+  // its divider restarts from MCLKST. Pending cycle-time events later than now are
+  // dropped, then the cycle-start listeners run.
+  void start_cycle(CycleKind kind);
+  // Substitute cycle (slave free-wheel): the counter moves back by `by` µs without a
+  // divider restart, so the µs grid is kept; then as start_cycle.
+  void shift_cycle(std::int64_t by);
+
+  // Calls `callback` when the counter steps from `cycle_time` to cycle_time + 1 in the
+  // running cycle. Returns 0 (nothing scheduled) when that step is not ahead. Events are
+  // dropped by the next cycle start; listeners re-arm from on_cycle_start.
+  CycleEvent at_cycle_time(std::int64_t cycle_time, std::function<void()> callback);
+  void cancel(CycleEvent event);
+  // When a pending event will run; nullopt once it ran, was cancelled or dropped.
+  std::optional<sim::Time> when(CycleEvent event) const;
+  // When the step out of `cycle_time` will happen in the running cycle, if it is ahead.
+  std::optional<sim::Time> time_of_cycle_time(std::int64_t cycle_time) const;
+
+  void on_cycle_start(std::function<void(const CycleStart&)> listener);
+  // MCLKDIV changed, registered at MCLK edge `edge`; `period` is the new MCLKDIV + 1.
+  void on_divider_change(std::function<void(Edge edge, std::int64_t period)> listener);
+
+  // Edge of the n-th tick (n >= 1) of the free-running divider strictly after `t`.
+  Edge free_tick_after(sim::Time t, std::int64_t n) const;
+
+ private:
+  struct Pending {
+    std::int64_t cycle_time;
+    std::function<void()> callback;
+    sim::Scheduler::EventId event;
+    sim::Time when;
+  };
+  Edge now_edge() const { return mclk_.last_at_or_before(scheduler_.now()); }
+  std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
+  void schedule(CycleEvent id, Pending& pending);
+  void drop_future_events();
+  void cancel_all();
+  void begin(CycleKind kind);
+  void on_register_change(std::uint8_t address);
+
+  sim::Scheduler& scheduler_;
+  RegisterFile& regs_;
+  MclkGrid mclk_;
+  FieldRef mclkdiv_, mclkst_, regmode_, phas0_, phasr_;
+  bool running_ = false;
+  std::int64_t divider_ = 0;  // MCLKDIV in force
+  std::int64_t base_ = 0;     // counter value before the first tick of ticks_
+  DividerTicks ticks_;        // the cycle counter's divider
+  DividerTicks free_;         // the free-running divider
+  CycleEvent next_id_ = 1;
+  std::map<CycleEvent, Pending> pending_;
+  std::vector<std::function<void(const CycleStart&)>> cycle_listeners_;
+  std::vector<std::function<void(Edge, std::int64_t)>> divider_listeners_;
+};
+
+}  // namespace sercon::chip

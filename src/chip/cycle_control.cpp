@@ -1,0 +1,201 @@
+#include "sercon/chip/cycle_control.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "sercon/chip/required_unit.hpp"
+
+namespace sercon::chip {
+namespace {
+
+constexpr std::uint8_t kSerMode = 0x01;
+constexpr std::uint8_t kPhase = 0x0A;
+constexpr std::uint8_t kTscyc0 = 0x0F;
+constexpr std::uint8_t kTscyc1 = 0x10;
+constexpr std::uint8_t kTcycstart = 0x14;
+
+// Synchroniser depths (docs/timing.md): an MST recognised at t loads the counter at the
+// 3rd MCLK edge after the first edge at or after t, 3..4 periods later, the 3.5 / f_MCLK
+// of the driver's t_start; an asynchronous CYC_CLK edge passes two flip-flops.
+constexpr Edge kMstSyncEdges = 3;
+constexpr Edge kCycClkSyncEdges = 2;
+
+}  // namespace
+
+CycleControl::CycleControl(Chip& chip)
+    : CycleControl(required_unit<TimeBase>(chip, "CycleControl"),
+                   required_unit<Interrupts>(chip, "CycleControl"), chip.pin(Pin::CYC_CLK)) {}
+
+CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Signal& cyc_clk)
+    : time_base_(time_base),
+      regs_(time_base.regs()),
+      scheduler_(time_base.scheduler()),
+      interrupts_(interrupts),
+      cyc_clk_(cyc_clk),
+      regmode_(field_ref("REGMODE", regs_.variant())),
+      presync_(field_ref("PRESYNC", regs_.variant())),
+      cycpol_(field_ref("CYCPOL", regs_.variant())),
+      window_(time_base, interrupts,
+              [this] {
+                // Slave: keep the cycle going one TSCYC after the missing MST's slot.
+                if (mode_ == Mode::Slave) time_base_.shift_cycle(window_.tscyc());
+              }),
+      next_cycle_(time_base.scheduler(), time_base.mclk()),
+      mst_send_(time_base.scheduler(), time_base.mclk()) {
+  regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
+  cyc_clk_.watch([this](sim::Level level) { on_cyc_clk(level); });
+  time_base_.on_cycle_start([this](const CycleStart& start) { on_cycle_start(start); });
+  time_base_.on_divider_change(
+      [this](Edge edge, std::int64_t period) { on_divider_change(edge, period); });
+}
+
+// Only the scheduler is touched here: the time base may be gone already (units are
+// destroyed in any order) and cancels the window's event itself.
+CycleControl::~CycleControl() { cancel_own_events(); }
+
+void CycleControl::cancel_own_events() {
+  next_cycle_.cancel();
+  mst_send_.cancel();
+  for (auto id : recognitions_) scheduler_.cancel(id);
+  recognitions_.clear();
+}
+
+void CycleControl::cancel_all() {
+  cancel_own_events();
+  window_.forget();
+}
+
+void CycleControl::reset(ResetCause) {
+  running_ = false;
+  cancel_all();
+  mode_ = Mode::Slave;
+  timer_idle_ = false;
+  cyc_clk_high_ = cyc_clk_.level() != sim::Level::Low;
+}
+
+void CycleControl::release() {
+  running_ = true;
+  cyc_clk_high_ = cyc_clk_.level() != sim::Level::Low;
+  switch_mode(mode_from_registers());
+}
+
+void CycleControl::on_send_mst(std::function<void()> listener) {
+  send_mst_listeners_.push_back(std::move(listener));
+}
+
+CycleControl::Mode CycleControl::mode_from_registers() const {
+  if (!regmode_.on(regs_)) return Mode::Slave;
+  return presync_.on(regs_) ? Mode::MasterCycClk : Mode::MasterTimer;
+}
+
+// A new mode starts from scratch: no window, no pending master events. The internal
+// timer starts a cycle at the next MCLK edge, or idles until TSCYC is programmed.
+void CycleControl::switch_mode(Mode mode) {
+  cancel_all();
+  mode_ = mode;
+  timer_idle_ = false;
+  if (mode_ == Mode::MasterTimer) start_timer_now();
+}
+
+void CycleControl::start_timer_now() {
+  if (time_base_.tscyc() == 0) {
+    timer_idle_ = true;
+    return;
+  }
+  timer_idle_ = false;
+  next_cycle_.at_edge(time_base_.mclk().first_at_or_after(scheduler_.now()),
+                      [this] { master_cycle_start(); });
+}
+
+void CycleControl::on_register_change(std::uint8_t address) {
+  if (!running_) return;
+  if (address == kSerMode) {
+    const Mode mode = mode_from_registers();
+    if (mode != mode_) switch_mode(mode);
+    return;
+  }
+  const bool cycle_time = address == kTscyc0 || address == kTscyc1 || address == kPhase;
+  if (cycle_time && mode_ == Mode::MasterTimer && timer_idle_) start_timer_now();
+}
+
+// Runs `action` at the `edges`-th MCLK edge after the first edge at or after `from`.
+void CycleControl::after_edges(sim::Time from, Edge edges, void (CycleControl::*action)()) {
+  std::erase_if(recognitions_, [this](auto id) { return !scheduler_.pending(id); });
+  const Edge edge = time_base_.mclk().first_at_or_after(from) + edges;
+  recognitions_.push_back(
+      scheduler_.at(time_base_.mclk().time_of(edge), [this, action] { (this->*action)(); }));
+}
+
+void CycleControl::mst_detected(sim::Time when) {
+  if (when < scheduler_.now()) {
+    throw std::invalid_argument("CycleControl::mst_detected: time " + std::to_string(when) +
+                                " ps is before now (" + std::to_string(scheduler_.now()) + " ps)");
+  }
+  if (!running_) return;
+  after_edges(when, kMstSyncEdges, &CycleControl::slave_mst);
+}
+
+void CycleControl::slave_mst() {
+  if (!running_ || mode_ != Mode::Slave) return;
+  window_.judge(false);
+  time_base_.start_cycle(CycleKind::Mst);
+  interrupts_.raise(Irq::Cycst);
+}
+
+// CYC_CLK has a pull-up (datasheet 3.3), so a floating input reads high.
+void CycleControl::on_cyc_clk(sim::Level level) {
+  const bool high = level != sim::Level::Low;
+  if (high == cyc_clk_high_) return;
+  cyc_clk_high_ = high;
+  const bool active_edge = cycpol_.on(regs_) ? !high : high;
+  if (!active_edge || !running_ || mode_ != Mode::MasterCycClk) return;
+  after_edges(scheduler_.now(), kCycClkSyncEdges, &CycleControl::cyc_clk_recognised);
+}
+
+void CycleControl::cyc_clk_recognised() {
+  if (!running_ || mode_ != Mode::MasterCycClk) return;
+  window_.judge(true);
+  master_cycle_start();
+}
+
+void CycleControl::master_cycle_start() {
+  const Edge start = time_base_.mclk().first_at_or_after(scheduler_.now());
+  time_base_.start_cycle(CycleKind::Master);
+  cycle_ticks_ =
+      DividerTicks::started_at(start, time_base_.tick_period(), time_base_.tick_period());
+  // A cycle sends one MST: a new cycle start before TCYCSTART has passed drops it.
+  const std::uint16_t delay = regs_.value(kTcycstart);
+  if (delay == 0) {
+    mst_send_.cancel();
+    send_mst();
+  } else {
+    mst_send_.at_tick(cycle_ticks_, delay, [this] { send_mst(); });
+  }
+  if (mode_ != Mode::MasterTimer) return;
+  const std::uint16_t tscyc = time_base_.tscyc();
+  if (tscyc == 0) {
+    timer_idle_ = true;
+    return;
+  }
+  next_cycle_.at_tick(cycle_ticks_, tscyc, [this] { master_cycle_start(); });
+}
+
+void CycleControl::send_mst() {
+  interrupts_.raise(Irq::Cycst);
+  for (std::size_t i = 0; i < send_mst_listeners_.size(); ++i) send_mst_listeners_[i]();
+}
+
+void CycleControl::on_cycle_start(const CycleStart& start) {
+  const bool slave_cycle = mode_ == Mode::Slave && start.kind != CycleKind::Master;
+  const bool synced_master = mode_ == Mode::MasterCycClk && start.kind == CycleKind::Master;
+  if (slave_cycle || synced_master) window_.expect_next(start.kind == CycleKind::Substitute);
+}
+
+void CycleControl::on_divider_change(Edge edge, std::int64_t period) {
+  cycle_ticks_.change_period(edge, period);
+  next_cycle_.retime(cycle_ticks_, edge);
+  mst_send_.retime(cycle_ticks_, edge);
+}
+
+}  // namespace sercon::chip

@@ -1,0 +1,76 @@
+#include "sercon/chip/cycle_window.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace sercon::chip {
+namespace {
+
+constexpr std::uint8_t kJtscyc1 = 0x15;
+constexpr std::uint8_t kJtscyc2 = 0x16;
+
+std::int64_t signed16(std::uint16_t value) { return static_cast<std::int16_t>(value); }
+
+}  // namespace
+
+CycleWindow::CycleWindow(TimeBase& time_base, Interrupts& interrupts,
+                         std::function<void()> closed_empty)
+    : time_base_(time_base), interrupts_(interrupts), closed_empty_(std::move(closed_empty)) {}
+
+// TSCYC = 0 means the cycle time is not programmed: nothing is expected, so no window
+// closes empty and nothing free-wheels.
+void CycleWindow::expect_next(bool after_miss) {
+  forget();
+  tscyc_ = time_base_.tscyc();
+  if (tscyc_ == 0) return;
+  const RegisterFile& regs = time_base_.regs();
+  opens_ = tscyc_ + signed16(regs.value(kJtscyc1));
+  closes_ = tscyc_ + signed16(regs.value(kJtscyc2));
+  state_ = after_miss ? State::Missed : State::Synced;
+  // A window programmed to close before the counter's start closes at the first step.
+  close_event_ = time_base_.at_cycle_time(std::max(closes_, time_base_.count()), [this] {
+    close_event_ = 0;
+    close();
+  });
+}
+
+void CycleWindow::forget() {
+  time_base_.cancel(close_event_);
+  close_event_ = 0;
+  state_ = State::Unsynced;
+}
+
+void CycleWindow::close() {
+  state_ = State::Missed;
+  interrupts_.raise(Irq::MstMiss);
+  closed_empty_();
+}
+
+void CycleWindow::judge(bool master) {
+  const auto due = time_base_.when(close_event_);
+  if (due && *due <= time_base_.scheduler().now()) {
+    time_base_.cancel(close_event_);
+    close_event_ = 0;
+    close();
+  }
+  const std::int64_t position = time_base_.count();
+  switch (state_) {
+    case State::Unsynced:
+      return;
+    case State::Synced:
+      if (position < opens_) interrupts_.raise(Irq::MstEarly);
+      return;
+    case State::Missed:
+      // Delta spec 2.6.5: a CYC_CLK "not inside this window" sets MSTEARLY; after an
+      // empty window it also is late. A master has no substitute window to be in.
+      if (master) {
+        interrupts_.raise(Irq::MstEarly);
+        interrupts_.raise(Irq::MstLate);
+      } else if (position < opens_) {
+        interrupts_.raise(Irq::MstLate);
+      }
+      return;
+  }
+}
+
+}  // namespace sercon::chip

@@ -1,0 +1,104 @@
+#include "sercon/chip/div_clk.hpp"
+
+#include <utility>
+
+#include "sercon/chip/required_unit.hpp"
+
+namespace sercon::chip {
+namespace {
+
+constexpr std::uint8_t kTdivclk = 0x1E;
+constexpr std::uint8_t kDtdivclk = 0x1F;
+constexpr std::int64_t kUnprogrammedCycleEnd = 0x10000;  // TSCYC = 0: the counter's range
+
+}  // namespace
+
+DivClk::DivClk(Chip& chip)
+    : DivClk(required_unit<TimeBase>(chip, "DivClk"), required_unit<Interrupts>(chip, "DivClk"),
+             [&chip](bool high) { chip.set_output(Pin::DIV_CLK, high); }) {}
+
+DivClk::DivClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
+    : time_base_(time_base),
+      regs_(time_base.regs()),
+      interrupts_(interrupts),
+      pin_(std::move(pin)),
+      ndivclk_(field_ref("NDIVCLK", regs_.variant())),
+      poldivclk_(field_ref("POLDIVCLK", regs_.variant())),
+      divclkmode_(field_ref("DIVCLKMODE", regs_.variant())),
+      end_(time_base.scheduler(), time_base.mclk()) {
+  time_base_.on_cycle_start([this](const CycleStart& start) { plan(start); });
+  // A new polarity shows at once, also on an idle output.
+  regs_.on_change([this](std::uint8_t address) {
+    if (address == poldivclk_.address) drive();
+  });
+}
+
+void DivClk::reset(ResetCause) {
+  for (auto id : planned_) time_base_.cancel(id);
+  planned_.clear();
+  end_.cancel();
+  active_ = false;
+  first_due_ = true;
+  cycles_since_pulse_ = 0;
+  drive();
+}
+
+void DivClk::plan(const CycleStart& start) {
+  planned_.clear();  // the time base dropped the previous cycle's events
+  const std::int64_t n = ndivclk_.get(regs_);
+  const std::int64_t cycle_end = start.tscyc == 0 ? kUnprogrammedCycleEnd : start.tscyc;
+  const std::int64_t first = regs_.value(kTdivclk);
+  if (n == 0) {  // delta spec 2.7: "0 Never becomes active"
+    first_due_ = true;
+    return;
+  }
+  if (!divclkmode_.on(regs_)) {
+    first_due_ = true;  // mode 1, if chosen later, starts with a pulse
+    const std::int64_t distance = regs_.value(kDtdivclk);
+    for (std::int64_t k = 0; k < n; ++k) {
+      const std::int64_t at = first + k * distance;
+      if (at >= cycle_end || (k > 0 && distance == 0)) break;
+      plan_pulse_at(at);
+    }
+    return;
+  }
+  // Delta spec 2.7: "goes active the first time in the first SERCOS cycle ... or after the
+  // first cycle when NDIVCLK is being programmed to a value not equal zero".
+  if (first_due_) {
+    first_due_ = false;
+    cycles_since_pulse_ = 0;
+  } else if (++cycles_since_pulse_ < n) {
+    return;
+  } else {
+    cycles_since_pulse_ = 0;
+  }
+  if (first < cycle_end) plan_pulse_at(first);
+}
+
+void DivClk::plan_pulse_at(std::int64_t cycle_time) {
+  const auto id = time_base_.at_cycle_time(cycle_time, [this] { pulse_starts(); });
+  if (id != 0) planned_.push_back(id);
+}
+
+void DivClk::pulse_starts() {
+  interrupts_.raise(Irq::DivClk);
+  active_ = true;
+  drive();
+  const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
+  end_.at_edge(now + time_base_.tick_period(), [this] { pulse_ends(); });
+}
+
+// A pulse starting at this very instant (DTDIVCLK = 1, or the next cycle's first pulse)
+// continues the output instead of a zero-width gap.
+void DivClk::pulse_ends() {
+  const sim::Time now = time_base_.scheduler().now();
+  for (auto id : planned_) {
+    if (time_base_.when(id) == now) return;
+  }
+  active_ = false;
+  drive();
+}
+
+void DivClk::drive() { pin_(active_ != poldivclk_.on(regs_)); }
+
+}  // namespace sercon::chip

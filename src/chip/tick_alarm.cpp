@@ -1,0 +1,44 @@
+#include "sercon/chip/tick_alarm.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace sercon::chip {
+
+void TickAlarm::at_tick(const DividerTicks& ticks, std::int64_t k, std::function<void()> callback) {
+  cancel();
+  callback_ = std::move(callback);
+  tick_ = std::max<std::int64_t>(k, 1);
+  schedule(ticks.edge_of(tick_));
+}
+
+void TickAlarm::at_edge(Edge edge, std::function<void()> callback) {
+  cancel();
+  callback_ = std::move(callback);
+  tick_ = 0;
+  schedule(edge);
+}
+
+void TickAlarm::retime(const DividerTicks& ticks, Edge changed_at) {
+  if (!pending() || tick_ == 0 || when_ <= mclk_.time_of(changed_at)) return;
+  scheduler_.cancel(event_);
+  schedule(ticks.edge_of(tick_));
+}
+
+void TickAlarm::cancel() {
+  scheduler_.cancel(event_);
+  event_ = {};
+}
+
+void TickAlarm::schedule(Edge edge) {
+  // A tick is never in the past when set; the clamp is a guard, not a rule.
+  when_ = std::max(mclk_.time_of(edge), scheduler_.now());
+  event_ = scheduler_.at(when_, [this] {
+    event_ = {};
+    auto callback = std::move(callback_);
+    callback_ = nullptr;
+    callback();
+  });
+}
+
+}  // namespace sercon::chip
