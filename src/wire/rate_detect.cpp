@@ -1,7 +1,8 @@
 // Bit-rate detection from edge intervals. The shortest common interval is one bit (a
-// telegram has `00` somewhere, and fill follows a flag with `0 0`); snap it to a SERCOS
-// rate (sercos-facts §1), then check that the intervals really are whole bits at that
-// rate. If they are not, the capture lacks one-bit intervals: try the next faster rate.
+// telegram has `00` somewhere, and fill follows a flag with `0 0`): take the nearest
+// SERCOS rate (sercos-facts §1), measure the period against it, require it within 5%,
+// then check that the intervals really are whole bits at that rate. If they are not, the
+// capture lacks one-bit intervals: try the next faster rate.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -16,24 +17,31 @@ namespace sercon::wire {
 namespace {
 
 constexpr std::size_t kMinIntervals = 8;
-constexpr double kSnapTolerance = 0.05;  // what the DPLL can follow over 8-bit runs
-constexpr double kMaxResidual = 0.4;     // |d/T - round(d/T)| for an interval that fits
+constexpr double kSnapTolerance = 0.05;    // what the DPLL can follow over 8-bit runs
+constexpr double kMaxResidual = 0.45;      // |d/T - round(d/T)| for an interval that fits
+constexpr double kMaxMeanResidual = 0.18;  // over all intervals
 
 std::string rate_text(std::int64_t period_ps) {
   return fmt::format("{:.3f} ns = {:.3f} Mbit/s", static_cast<double>(period_ps) / 1000.0,
                      1e6 / static_cast<double>(period_ps));
 }
 
-// Intervals that are not a whole number (>= 1) of bits at period t; a few glitches are
-// allowed (one in a thousand).
+// Whether the intervals are whole numbers (>= 1) of bits at period t: at most one in a
+// thousand may be off by more than kMaxResidual (glitches), and the mean residual must be
+// small. Jitter of ±J gives a mean of about 2J/3; a wrong rate such as 3 Mbit/s read as 4
+// gives about 0.22, a faster line read at half its rate 0.5 on every odd interval.
 bool fits(std::span<const std::int64_t> intervals, double t) {
   std::size_t misfits = 0;
+  double residual_sum = 0;
   for (std::int64_t d : intervals) {
     const double bits = static_cast<double>(d) / t;
     const double whole = std::round(bits);
-    if (whole < 1.0 || std::abs(bits - whole) > kMaxResidual) ++misfits;
+    const double residual = std::abs(bits - whole);
+    residual_sum += residual;
+    if (whole < 1.0 || residual > kMaxResidual) ++misfits;
   }
-  return misfits * 1000 <= intervals.size();
+  return misfits * 1000 <= intervals.size() &&
+         residual_sum <= kMaxMeanResidual * static_cast<double>(intervals.size());
 }
 
 }  // namespace
@@ -49,30 +57,40 @@ std::int64_t detect_bit_period(std::span<const std::int64_t> intervals_ps) {
   if (sorted.front() <= 0)
     throw RecoveryError("clock recovery: edge interval of " + std::to_string(sorted.front()) +
                         " ps; intervals must be positive");
-  // Shortest common interval: from the 0.1th percentile (ignores rare glitches) up to 1.6x
-  // it, which holds one-bit intervals with up to ±3/8 bit of error but no two-bit ones.
+  // Shortest common interval: from the 0.1th percentile p (ignores rare glitches) up to
+  // 2p, which holds one-bit intervals but never two-bit ones. Its median is near one bit
+  // (biased low under heavy jitter, which the next steps absorb).
   const std::int64_t low = sorted[sorted.size() / 1000];
   const auto first = std::lower_bound(sorted.begin(), sorted.end(), low);
-  const auto last = std::lower_bound(sorted.begin(), sorted.end(), low + low * 3 / 5);
+  const auto last = std::lower_bound(sorted.begin(), sorted.end(), 2 * low);
   const std::int64_t base = *(first + (last - first) / 2);
 
-  // Refine over every interval of up to 16 bits: total time / total bits.
+  // The SERCOS rate nearest to it (rates are a factor 2 apart: within a factor sqrt 2).
+  std::size_t snapped = std::size(kBitPeriodsPs);
+  for (std::size_t i = 0; i < std::size(kBitPeriodsPs); ++i) {
+    const double ratio = static_cast<double>(base) / static_cast<double>(kBitPeriodsPs[i]);
+    if (ratio >= 1 / std::sqrt(2.0) && ratio < std::sqrt(2.0)) snapped = i;
+  }
+  if (snapped == std::size(kBitPeriodsPs))
+    throw RecoveryError(fmt::format(
+        "clock recovery: the shortest common edge interval is {}, not near a SERCOS rate "
+        "(2, 4, 8, 16 Mbit/s); give the bit period",
+        rate_text(base)));
+  // Measure the period: total time / total bits over the intervals of up to 8 bits that
+  // are clearly whole bits at that rate (odd intervals of a faster line, at half-bit
+  // residue, would bias it).
   double time = 0;
   double bits = 0;
+  const auto nominal = static_cast<double>(kBitPeriodsPs[snapped]);
   for (std::int64_t d : sorted) {
-    const double n = std::round(static_cast<double>(d) / static_cast<double>(base));
-    if (n < 1 || n > 16) continue;
+    const double x = static_cast<double>(d) / nominal;
+    const double n = std::round(x);
+    if (n < 1 || n > 8 || std::abs(x - n) > 0.3) continue;
     time += static_cast<double>(d);
     bits += n;
   }
-  const double measured = time / bits;  // base itself counts, so bits >= 1
-
-  std::size_t snapped = std::size(kBitPeriodsPs);
-  for (std::size_t i = 0; i < std::size(kBitPeriodsPs); ++i) {
-    const auto t = static_cast<double>(kBitPeriodsPs[i]);
-    if (std::abs(measured - t) <= kSnapTolerance * t) snapped = i;
-  }
-  if (snapped == std::size(kBitPeriodsPs))
+  const double measured = bits > 0 ? time / bits : static_cast<double>(base);
+  if (std::abs(measured - nominal) > kSnapTolerance * nominal)
     throw RecoveryError(fmt::format(
         "clock recovery: the edge intervals give a bit period of {}, not within {:.0f}% of a "
         "SERCOS rate (2, 4, 8, 16 Mbit/s); give the bit period",

@@ -154,6 +154,22 @@ TEST(ClockRecovery, DetectsRateWithinTolerance) {
   }
 }
 
+// Brief (rate detection) + delta spec 2.3.1: detection still finds every rate from 8x
+// samples with ±3/16-bit jitter, beyond the required ±1/8 (docs/wire.md, tolerance).
+TEST(ClockRecovery, DetectsRateUnderThreeSixteenthsJitter) {
+  for (std::int64_t period : kBitPeriodsPs) {
+    const Stream s = make_stream(static_cast<std::uint64_t>(period) + 3, 6);
+    std::mt19937_64 rng(static_cast<std::uint64_t>(period) + 9);
+    const auto edges = test::jittered_edges(s.line, period, period * 3 / 16, rng);
+    const std::int64_t sample_period = period / 8;
+    const auto count = static_cast<std::size_t>(end_of(s.line, period) / sample_period);
+    const auto words = test::sample_edges(s.line[0], edges, count, sample_period);
+    EXPECT_EQ(recover_from_samples(words, count, sample_period).bit_period_ps, period);
+    EXPECT_EQ(recover_from_edges(s.line[0], edges, 0, end_of(s.line, period)).bit_period_ps,
+              period);
+  }
+}
+
 // Brief: a rate that is not a SERCOS rate fails with a clear message.
 TEST(ClockRecovery, RejectsNonSercosRate) {
   const Stream s = make_stream(6, 3);
@@ -166,6 +182,9 @@ TEST(ClockRecovery, RejectsNonSercosRate) {
   } catch (const RecoveryError& e) {
     EXPECT_NE(std::string(e.what()).find("SERCOS rate"), std::string::npos) << e.what();
   }
+  // 2.5 Mbit/s: some intervals are whole bits at 2 Mbit/s, most are not.
+  const auto edges_2m5 = test::jittered_edges(s.line, 400'000, 0, rng);
+  EXPECT_THROW(recover_from_edges(s.line[0], edges_2m5, 0, end_of(s.line, 400'000)), RecoveryError);
   // 8% slower than 8 Mbit/s is outside the 5% the DPLL can follow.
   const std::int64_t slow = 135'000;
   const auto slow_edges = test::jittered_edges(s.line, slow, 0, rng);
