@@ -53,10 +53,16 @@ class SerialUnit : public ChipUnit {
   // One bit time at the present rate (Chip::serial_clocks()); 0 while the clocks are off.
   sim::Time bit_period() const;
 
+  // First TxC edge at or after t: the transmit bit clock ticks at k * bit_period() from
+  // time 0 (SCLK grid), and a telegram can only begin on a tick.
+  sim::Time next_bit_edge(sim::Time t) const;
+
   // --- transmitter (the telegram processor's side) ---------------------------------------
-  // Sends address + data as one telegram whose opening flag starts at `start` (>= now).
-  // Returns the end time (end of the closing flag). Throws std::logic_error if it overlaps
-  // the unit's own previous transmission or the clocks are off, std::invalid_argument if
+  // Sends address + data as one telegram whose opening flag starts at the first TxC edge at
+  // or after `start` (>= now): next_bit_edge(start), which is `start` itself when it is on
+  // the bit grid. Returns the end time (end of the closing flag), so the actual start is
+  // end - burst_duration(). Throws std::logic_error if it overlaps the unit's own previous
+  // transmission, the clocks are off or the chip is in reset; std::invalid_argument if
   // `start` is in the past. Whether the telegram is allowed (ENTMT etc.) is the caller's
   // business; output enables, test modes and polarity are this unit's.
   sim::Time send(sim::Time start, std::uint8_t address, std::span<const std::uint8_t> data);
