@@ -16,6 +16,7 @@
 namespace sercon::chip::testing {
 
 using sim::kMicrosecond;
+using sim::kMillisecond;
 using sim::Level;
 using sim::Time;
 
