@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,17 @@ namespace sercon::wire {
 namespace {
 
 constexpr std::size_t kDetectEdges = std::size_t{1} << 20;  // enough for the histogram
+constexpr std::int64_t kMaxBits = std::int64_t{1} << 34;    // 2 GiB of packed line bits
+
+// The capture must fit the arithmetic and the memory: a clear error instead of overflow.
+void check_span(std::int64_t start_ps, std::int64_t end_ps, std::int64_t bit_period) {
+  std::int64_t span = 0;
+  if (__builtin_sub_overflow(end_ps, start_ps, &span) || span / bit_period > kMaxBits)
+    throw RecoveryError(fmt::format(
+        "clock recovery: a capture from {} ps to {} ps holds more than {} bits at {} ps per "
+        "bit; too long",
+        start_ps, end_ps, kMaxBits, bit_period));
+}
 
 std::int64_t checked_period(std::int64_t period) {
   if (period <= 0)
@@ -73,6 +85,7 @@ RecoveredLine recover_from_edges(bool initial_level, std::span<const Edge> edges
       if (times[i] > times[i - 1]) intervals.push_back(times[i] - times[i - 1]);
     out.bit_period_ps = detect_bit_period(intervals);
   }
+  check_span(start_ps, end_ps, out.bit_period_ps);
   out.bits.reserve(static_cast<std::size_t>((end_ps - start_ps) / out.bit_period_ps) + 64);
   out.anchors.reserve(times.size() + 1);
   detail::Dpll dpll(out, start_ps, out.bit_period_ps, initial_level);
@@ -119,6 +132,15 @@ RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::si
       (sample_count / 64 == words.size() && sample_count % 64 != 0))
     throw RecoveryError(fmt::format("clock recovery: {} samples do not fit in {} words",
                                     sample_count, words.size()));
+  std::int64_t duration = 0;
+  std::int64_t end_ps = 0;
+  if (sample_count > static_cast<std::size_t>(INT64_MAX) ||
+      __builtin_mul_overflow(static_cast<std::int64_t>(sample_count), sample_period_ps,
+                             &duration) ||
+      __builtin_add_overflow(start_ps, duration, &end_ps))
+    throw RecoveryError(
+        fmt::format("clock recovery: {} samples of {} ps from {} ps run past the time range",
+                    sample_count, sample_period_ps, start_ps));
   const std::int64_t half = sample_period_ps / 2;
   // A change between samples k-1 and k happened somewhere in between: take the middle.
   const auto time_of = [&](std::size_t k) {
@@ -150,7 +172,8 @@ RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::si
         "the capture cannot resolve this rate",
         out.bit_period_ps, sample_period_ps));
 
-  const std::int64_t end_ps = time_of(sample_count);
+  end_ps -= half;  // time_of(sample_count): the last sample covers up to here
+  check_span(start_ps, end_ps, out.bit_period_ps);
   out.bits.reserve(static_cast<std::size_t>((end_ps - start_ps) / out.bit_period_ps) + 64);
   detail::Dpll dpll(out, start_ps, out.bit_period_ps, (words[0] & 1u) != 0);
   bool any = false;

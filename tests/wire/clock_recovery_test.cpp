@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <climits>
+#include <cstdint>
 #include <functional>
 #include <random>
 #include <string>
@@ -239,6 +241,16 @@ TEST(ClockRecovery, BadEdgeInput) {
             std::string::npos);
   EXPECT_NE(message_of([&] { recover_from_edges(true, one, 0, 1000); }).find("too few"),
             std::string::npos);
+  // Absurd spans: a clear error, not overflow or a petabit allocation.
+  const std::vector<Edge> far = {{1'000'000'000'000'000, false}};
+  EXPECT_NE(message_of([&] {
+              recover_from_edges(true, far, 0, 2'000'000'000'000'000, {1});
+            }).find("too long"),
+            std::string::npos);
+  EXPECT_NE(message_of([&] {
+              recover_from_edges(true, one, INT64_MIN, INT64_MAX, {62'500});
+            }).find("too long"),
+            std::string::npos);
 }
 
 // Brief: bad sample input -> RecoveryError naming the problem.
@@ -255,6 +267,9 @@ TEST(ClockRecovery, BadSampleInput) {
             std::string::npos);
   EXPECT_NE(message_of([&] { recover_from_samples(flat, 256, 0); }).find("sample period"),
             std::string::npos);
+  EXPECT_NE(
+      message_of([&] { recover_from_samples(flat, 256, INT64_MAX / 100); }).find("time range"),
+      std::string::npos);
   const std::vector<std::uint64_t> toggling(4, 0x5555555555555555ull);
   // 16 Mbit/s sampled at 40 ns: fewer than 2 samples per bit.
   EXPECT_NE(message_of([&] {

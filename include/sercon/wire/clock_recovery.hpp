@@ -3,9 +3,9 @@
 // phase on every edge and samples the level in the middle of each bit. Rates are those
 // of sercos-facts §1: 2, 4, 8, 16 Mbit/s (bit = 500, 250, 125, 62.5 ns).
 //
-// Tolerance (measured, docs/wire.md): edge jitter of ±1/8 bit always recovers exactly;
-// ±1/4 bit loses or gains a bit on a small fraction of edge intervals, which the decoder
-// then reports as frame errors (never UB or exceptions).
+// Tolerance (docs/wire.md): recovery is exact for edge jitter up to ±7/32 bit from edge
+// times and ±5/32 bit from samples (so the required ±1/8 always). Beyond that an interval
+// may gain or lose a bit; the decoder then reports the frame as an error and resyncs.
 #pragma once
 
 #include <cstddef>
