@@ -318,8 +318,8 @@ TEST(Decoder, ChunkedFeedingEqualsWholeFeeding) {
   }
 }
 
-// Random line noise: never an exception, frames in order and inside the input, and a
-// frame without error really has a matching FCS.
+// Brief (bad input never UB; decoder invariants): random line noise never throws, frames
+// are in order and inside the input, and a frame without error has a matching FCS.
 TEST(Decoder, RandomNoiseKeepsInvariants) {
   std::mt19937_64 rng(7);
   for (int round = 0; round < 50; ++round) {
@@ -345,7 +345,7 @@ TEST(Decoder, RandomNoiseKeepsInvariants) {
   }
 }
 
-// Bad input gets exceptions: packed bytes too few for the bit count, and an empty sink.
+// Brief (bad input gets exceptions): packed bytes too few for the bit count, empty sink.
 TEST(Decoder, RejectsBadInput) {
   LineDecoder dec([](const DecodedFrame&) {});
   const Bytes two = {0, 0};
@@ -354,7 +354,7 @@ TEST(Decoder, RejectsBadInput) {
   EXPECT_THROW(LineDecoder(LineDecoder::Sink{}), std::invalid_argument);
 }
 
-// Every error class has a readable name.
+// Brief (FrameError with to_string): every error class has a readable name.
 TEST(Decoder, ErrorNames) {
   EXPECT_EQ(to_string(FrameError::None), "none");
   EXPECT_EQ(to_string(FrameError::BadFcs), "bad FCS");

@@ -127,7 +127,7 @@ TEST(Encoder, FramePositionsAndFillAfterTelegram) {
   EXPECT_EQ(d.substr(f.end_bit), "0111111101111111");
 }
 
-// take() hands over the line and the encoder carries on at the same level.
+// Brief (LineEncoder::take): hands over the line; the encoder carries on at the same level.
 TEST(Encoder, TakeKeepsTheLevel) {
   LineEncoder enc(false);
   enc.raw_decoded_bits("0");

@@ -33,7 +33,7 @@ TEST(LineBits, FromPackedIgnoresTrailingBitsAndBytes) {
   EXPECT_EQ(b.word_at(0), 0xFFF0000000000000ull);
 }
 
-// Bad input gets an exception: more bits than the bytes hold.
+// Brief (from_packed throws std::invalid_argument): more bits than the bytes hold.
 TEST(LineBits, FromPackedRejectsTooManyBits) {
   EXPECT_THROW(LineBits::from_packed({0x00}, 9), std::invalid_argument);
   EXPECT_THROW(LineBits::from_packed({}, 1), std::invalid_argument);
@@ -43,7 +43,8 @@ TEST(LineBits, FromPackedRejectsTooManyBits) {
   EXPECT_THROW((void)b.at(8), std::out_of_range);
 }
 
-// Appends at any alignment agree with push_back, and packed() is the capture format.
+// Format (brief: `bits` capture format): appends at any alignment agree with push_back,
+// and packed() holds bit i at (bytes[i/8] >> (7 - i%8)) & 1.
 TEST(LineBits, AppendAtAnyAlignmentMatchesPushBack) {
   std::mt19937_64 rng(1);
   for (int round = 0; round < 200; ++round) {
@@ -89,7 +90,8 @@ TEST(LineBits, AppendAtAnyAlignmentMatchesPushBack) {
   }
 }
 
-// from_packed(packed()) reproduces the line (the round trip a capture file takes).
+// Format (brief: `bits` capture format): from_packed(packed()) reproduces the line, the
+// round trip a capture file takes.
 TEST(LineBits, PackedRoundTrip) {
   LineBits a;
   for (int i = 0; i < 77; ++i) a.push_back(i % 3 == 0);
