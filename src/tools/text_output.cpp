@@ -52,10 +52,17 @@ std::string text_summary(const DecodeSummary& summary, const DecodeRunInfo& info
     errors += fmt::format("{}{} {}", errors.empty() ? "" : ", ", error_text_name(error),
                           summary.errors(error));
   }
+  // A long capture may fall back and phase up many times: show the start and the end.
+  const std::vector<unsigned>& seen = summary.phases();
+  constexpr std::size_t kHead = 16;
+  constexpr std::size_t kTail = 8;
   std::string phases;
-  for (unsigned phase : summary.phases()) {
-    phases +=
-        fmt::format("{}{}{}", phases.empty() ? "" : " -> ", phase, phase > 4 ? " (invalid)" : "");
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    if (seen.size() > kHead + kTail && i == kHead) {
+      phases += fmt::format(" -> ... ({} phases in all)", seen.size());
+      i = seen.size() - kTail;
+    }
+    phases += fmt::format("{}{}{}", i == 0 ? "" : " -> ", seen[i], seen[i] > 4 ? " (invalid)" : "");
   }
 
   std::string out = "summary\n";

@@ -83,6 +83,17 @@ TEST(TextOutput, HeaderAndSummary) {
             "drive's AT from the master's single-drive MDT (sercos-facts §2)\n");
 }
 
+TEST(TextOutput, LongPhaseHistoryShowsStartAndEnd) {
+  DecodeSummary s;
+  for (int i = 0; i < 30; ++i) s.add(mst(static_cast<unsigned>(i % 2)));
+  const std::string text = text_summary(s, info());
+  EXPECT_NE(text.find("  phases     0 -> 1 -> 0 -> 1 -> 0 -> 1 -> 0 -> 1 -> 0 -> 1 -> 0 -> 1 -> 0 "
+                      "-> 1 -> 0 -> 1 -> ... (30 phases in all) -> 0 -> 1 -> 0 -> 1 -> 0 -> 1 -> "
+                      "0 -> 1\n"),
+            std::string::npos)
+      << text;
+}
+
 TEST(JsonOutput, TelegramObject) {
   EXPECT_EQ(json_row(mst(4)).dump(),
             R"({"t_ns":1234.5,"kind":"MST","address":255,"length":1,"data":"04","fcs_ok":true,)"
