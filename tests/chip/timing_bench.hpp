@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <vector>
 
 #include "chip_fixture.hpp"
@@ -81,6 +82,9 @@ class PinLog {
     Time at;
     Level level;
     friend bool operator==(const Change&, const Change&) = default;
+    friend void PrintTo(const Change& c, std::ostream* os) {
+      *os << sim::level_char(c.level) << " at " << c.at << " ps";
+    }
   };
   PinLog(const sim::Scheduler& scheduler, sim::Signal& signal) : signal_(signal) {
     handle_ = signal_.watch([this, &scheduler](Level level) {

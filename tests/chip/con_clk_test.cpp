@@ -1,0 +1,112 @@
+// The CON_CLK output: datasheet Table 1 ("becomes active within a communication cycle.
+// Time, polarity and width are programmable"), registers 1AH..1CH (docs/timing.md,
+// "CON_CLK"), exact edges.
+#include <gtest/gtest.h>
+
+#include "timing_bench.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using namespace testing;
+
+constexpr std::int64_t kP = 32;
+constexpr std::int64_t kStartDelay = 5;
+constexpr std::int64_t kStartValue = 3;
+constexpr std::int64_t kCycle = 250;
+
+struct ConClkBench : TimingBench {
+  ConClkBench() : pin_log(bench.scheduler, pin(Pin::CON_CLK)) {
+    chip.reg_write(kClockDiv, kStartDelay << 8 | (kP - 1));
+    chip.reg_write(kTcntst, kStartValue);
+    chip.reg_write(kTscyc0, kCycle);
+  }
+  void start_master() { chip.reg_write(kSerMode, kRegmode); }  // cycles at k * 250 µs
+  Time at_cycle_time(std::int64_t k, std::int64_t c) const {
+    return k * kCycle * kMicrosecond + (kStartDelay + (c - kStartValue) * kP) * mclk();
+  }
+  PinLog pin_log;
+};
+
+// Register table 1AH TCONCLK "CON_CLK active from this cycle time (µs)", 1BH WCONCLK
+// "active width (µs)"; INT_CONCLK "CON_CLK became active".
+TEST(ConClk, ActiveFromTconclkForWconclkMicroseconds) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.chip.reg_write(kWconclk, 5);
+  b.start_master();
+  b.run_to(b.at_cycle_time(0, 30) - 1);
+  EXPECT_FALSE(b.flags_at(b.now(), kIntConclk));
+  EXPECT_TRUE(b.flags_at(b.at_cycle_time(0, 30), kIntConclk));
+  b.run_to(3 * kCycle * kMicrosecond - 1);
+  std::vector<PinLog::Change> expected;
+  for (std::int64_t k = 0; k < 3; ++k) {
+    expected.push_back({b.at_cycle_time(k, 30), Level::High});
+    expected.push_back({b.at_cycle_time(k, 30) + 5 * kMicrosecond, Level::Low});
+  }
+  EXPECT_EQ(b.pin_log.changes, expected);
+}
+
+// Register table WCONCLK: "0 = never".
+TEST(ConClk, WidthZeroNever) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.start_master();
+  b.run_to(2 * kMillisecond);
+  EXPECT_TRUE(b.pin_log.changes.empty());
+  EXPECT_FALSE(b.flags_at(b.now(), kIntConclk));
+}
+
+// Register table 1CH POLCONCLK: "CON_CLK 1-active (0) or 0-active (1)"; the idle level
+// follows at once.
+TEST(ConClk, PolarityZeroActive) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.chip.reg_write(kWconclk, 2);
+  b.start_master();
+  b.write_at(kMicrosecond, kConCtrl, 1);
+  b.run_to(kCycle * kMicrosecond - 1);
+  EXPECT_EQ(b.pin_log.changes, (std::vector<PinLog::Change>{
+                                   {kMicrosecond, Level::High},
+                                   {b.at_cycle_time(0, 30), Level::Low},
+                                   {b.at_cycle_time(0, 30) + 2 * kMicrosecond, Level::High}}));
+}
+
+// Decision: a start at or after the cycle time TSCYC is outside the cycle: never.
+TEST(ConClk, StartBeyondTheCycleNever) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, kCycle);
+  b.chip.reg_write(kWconclk, 2);
+  b.start_master();
+  b.run_to(2 * kMillisecond);
+  EXPECT_TRUE(b.pin_log.changes.empty());
+}
+
+// Decision: a width beyond the next start keeps the output active (restarted each cycle):
+// one edge, INT_CONCLK in every cycle.
+TEST(ConClk, WidthLongerThanTheCycleStaysActive) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.chip.reg_write(kWconclk, 300);
+  b.start_master();
+  b.run_to(b.at_cycle_time(1, 30) - 1);
+  b.clear_flags();
+  EXPECT_TRUE(b.flags_at(b.at_cycle_time(1, 30), kIntConclk));
+  b.run_to(b.at_cycle_time(3, 30) - 1);
+  EXPECT_EQ(b.pin_log.changes,
+            (std::vector<PinLog::Change>{{b.at_cycle_time(0, 30), Level::High}}));
+}
+
+// Exactly back to back (width = TSCYC): no zero-width gap at the joint.
+TEST(ConClk, WidthOfOneCycleHasNoGap) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.chip.reg_write(kWconclk, kCycle);
+  b.start_master();
+  b.run_to(b.at_cycle_time(4, 29));
+  EXPECT_EQ(b.pin_log.changes,
+            (std::vector<PinLog::Change>{{b.at_cycle_time(0, 30), Level::High}}));
+}
+
+}  // namespace
+}  // namespace sercon::chip

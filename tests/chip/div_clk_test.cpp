@@ -1,0 +1,234 @@
+// The DIV_CLK output: delta spec 2.7 and 2.11.1.3, datasheet Table 1 ("the pulse width is
+// 1 µs"), with exact edges (docs/timing.md, "DIV_CLK").
+#include <gtest/gtest.h>
+
+#include "sercon/chip/div_clk.hpp"
+#include "timing_bench.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using namespace testing;
+
+// Master timer at 32 MHz: cycles start at k * 250 µs; the counter is loaded with TCNTST = 3
+// and steps out of cycle time c (>= 3) at start + (MCLKST + (c - 3) * 32) MCLK periods.
+constexpr std::int64_t kP = 32;
+constexpr std::int64_t kStartDelay = 5;
+constexpr std::int64_t kStartValue = 3;
+constexpr std::int64_t kCycle = 250;
+
+struct DivClkBench : TimingBench {
+  explicit DivClkBench(const ChipConfig& config = {})
+      : TimingBench(config), pin_log(bench.scheduler, pin(Pin::DIV_CLK)) {
+    chip.reg_write(kClockDiv, kStartDelay << 8 | (kP - 1));
+    chip.reg_write(kTcntst, kStartValue);
+    chip.reg_write(kTscyc0, kCycle);
+  }
+  void start_master() { chip.reg_write(kSerMode, kRegmode); }  // at time 0: first cycle at 0
+  Time cycle_start(std::int64_t k) const { return k * kCycle * kMicrosecond; }
+  Time at_cycle_time(std::int64_t k, std::int64_t c) const {
+    return cycle_start(k) + (kStartDelay + (c - kStartValue) * kP) * mclk();
+  }
+  // The pulses expected: rising at each start, falling one µs tick later.
+  std::vector<PinLog::Change> pulses(const std::vector<Time>& starts, Level active) const {
+    const Level idle = active == Level::High ? Level::Low : Level::High;
+    std::vector<PinLog::Change> out;
+    for (Time s : starts) {
+      out.push_back({s, active});
+      out.push_back({s + kP * mclk(), idle});
+    }
+    return out;
+  }
+  PinLog pin_log;
+};
+
+// Delta spec 2.7: "The first point in time for an active output is programmed by the
+// control register TDIVCLK (1EH). The distance between two pulses of DIV_CLK is determined
+// by register DTDIVCLK (1FH) ... the number of pulses during one SERCOS cycle is set by
+// register NDIVCLK (20H,7-0)." Table 1: "the pulse width is 1 µs".
+TEST(DivClk, ModeZeroNPulsesPerCycle) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 20);
+  b.chip.reg_write(kDtdivclk, 50);
+  b.chip.reg_write(kDivCtrl, 3);
+  b.start_master();
+  b.run_to(b.cycle_start(3) - 1);
+  std::vector<Time> starts;
+  for (std::int64_t k = 0; k < 3; ++k) {
+    for (std::int64_t c : {20, 70, 120}) starts.push_back(b.at_cycle_time(k, c));
+  }
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
+// Register table INT_DIVCLK: "A DIV_CLK pulse began".
+TEST(DivClk, IntDivclkAtEachPulseStart) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 20);
+  b.chip.reg_write(kDtdivclk, 50);
+  b.chip.reg_write(kDivCtrl, 2);
+  b.start_master();
+  for (std::int64_t c : {20, 70}) {
+    b.run_to(b.at_cycle_time(0, c) - 1);
+    b.clear_flags();
+    EXPECT_FALSE(b.flags_at(b.at_cycle_time(0, c) - 1, kIntDivclk)) << c;
+    EXPECT_TRUE(b.flags_at(b.at_cycle_time(0, c), kIntDivclk)) << c;
+  }
+}
+
+// Delta spec 2.7 table: "NDIVCLK 0: Never becomes active".
+TEST(DivClk, NdivclkZeroNever) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 20);
+  b.start_master();
+  b.run_to(5 * kMillisecond);
+  EXPECT_TRUE(b.pin_log.changes.empty());
+  EXPECT_FALSE(b.flags_at(b.now(), kIntDivclk));
+}
+
+// Decision (docs/timing.md): in mode 0 a pulse that would start at or after the cycle time
+// TSCYC is dropped; it would fall into the next cycle.
+TEST(DivClk, PulsesBeyondTheCycleAreDropped) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 100);
+  b.chip.reg_write(kDtdivclk, 50);
+  b.chip.reg_write(kDivCtrl, 10);
+  b.start_master();
+  b.run_to(b.cycle_start(1) - 1);
+  EXPECT_EQ(b.pin_log.changes,
+            b.pulses({b.at_cycle_time(0, 100), b.at_cycle_time(0, 150), b.at_cycle_time(0, 200)},
+                     Level::High));
+}
+
+// Delta spec 2.11.1.3: "POLDIVCLK 0: DIV_CLK pulse 1-active, 1: DIV_CLK pulse 0-active". The
+// idle level follows the bit at once.
+TEST(DivClk, PolarityZeroActive) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 20);
+  b.chip.reg_write(kDivCtrl, 1);
+  b.start_master();
+  b.write_at(kMicrosecond, kDivCtrl, kPoldivclk | 1);
+  b.run_to(b.cycle_start(1) - 1);
+  std::vector<PinLog::Change> expected{{kMicrosecond, Level::High}};
+  for (const auto& c : b.pulses({b.at_cycle_time(0, 20)}, Level::Low)) expected.push_back(c);
+  EXPECT_EQ(b.pin_log.changes, expected);
+}
+
+// Delta spec 2.7: "DIVCLKMODE 1: One time during multiple SERCOS cycles ... NDIVCLK 3:
+// Active after each third cycle. The output DIV_CLK goes active the first time in the first
+// SERCOS cycle (if NDIVCLK != 0)". "The control register TDIVCLK determines the point in
+// time in a SERCOS cycle when DIV_CLK becomes active."
+TEST(DivClk, ModeOneEveryNthCycleFromTheFirst) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 40);
+  b.chip.reg_write(kDtdivclk, 10);  // not used in mode 1
+  b.chip.reg_write(kDivCtrl, kDivclkmode | 3);
+  b.start_master();
+  b.run_to(b.cycle_start(10) - 1);
+  std::vector<Time> starts;
+  for (std::int64_t k : {0, 3, 6, 9}) starts.push_back(b.at_cycle_time(k, 40));
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
+// Delta spec 2.7: "... or after the first cycle when NDIVCLK is being programmed to a value
+// not equal zero." Programmed during cycle 4: nothing in cycle 4, the first pulse in
+// cycle 5, then every second cycle.
+TEST(DivClk, ModeOneProgrammedWhileRunning) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 200);
+  b.chip.reg_write(kDivCtrl, kDivclkmode);
+  b.start_master();
+  b.write_at(b.cycle_start(4) + 100 * kMicrosecond, kDivCtrl, kDivclkmode | 2);
+  b.run_to(b.cycle_start(10) - 1);
+  std::vector<Time> starts;
+  for (std::int64_t k : {5, 7, 9}) starts.push_back(b.at_cycle_time(k, 200));
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
+// Delta spec 2.7: DIVCLKMODE is new in the 816; the 410B has mode 0 only (the bit is not
+// there, so writing it changes nothing).
+TEST(DivClk, The410BIgnoresDivclkmode) {
+  DivClkBench b(config_410b());
+  b.chip.reg_write(kTdivclk, 20);
+  b.chip.reg_write(kDtdivclk, 50);
+  b.chip.reg_write(kDivCtrl, kDivclkmode | 2);
+  b.start_master();
+  b.run_to(b.cycle_start(2) - 1);
+  std::vector<Time> starts;
+  for (std::int64_t k : {0, 1}) {
+    for (std::int64_t c : {20, 70}) starts.push_back(b.at_cycle_time(k, c));
+  }
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
+// Decision: pulses 1 µs apart (DTDIVCLK = 1) join into one active stretch without a
+// zero-width gap; DTDIVCLK = 0 puts all pulses on one instant: one pulse.
+TEST(DivClk, AdjacentPulsesJoinAndCoincidentPulsesAreOne) {
+  for (const int distance : {1, 0}) {
+    DivClkBench b;
+    b.chip.reg_write(kTdivclk, 20);
+    b.chip.reg_write(kDtdivclk, static_cast<std::uint16_t>(distance));
+    b.chip.reg_write(kDivCtrl, 3);
+    b.start_master();
+    b.run_to(b.cycle_start(1) - 1);
+    const Time start = b.at_cycle_time(0, 20);
+    const Time end = start + (distance == 1 ? 3 : 1) * kMicrosecond;
+    EXPECT_EQ(b.pin_log.changes,
+              (std::vector<PinLog::Change>{{start, Level::High}, {end, Level::Low}}))
+        << distance;
+  }
+}
+
+// Decision: a slave free-wheeling over missing MSTs keeps DIV_CLK going in the substitute
+// cycles (they keep the µs grid); cycle times up to TSCYC + JTSCYC2 of a missed cycle are
+// before the free-wheel decision and are lost in it.
+TEST(DivClk, ContinuesWhileASlaveFreeWheels) {
+  DivClkBench b;
+  b.chip.reg_write(kJtscyc1, static_cast<std::uint16_t>(-4));
+  b.chip.reg_write(kJtscyc2, 10);
+  b.chip.reg_write(kTdivclk, 100);
+  b.chip.reg_write(kDivCtrl, 1);
+  const Time recognised = 10 * kMicrosecond;
+  b.cycles().mst_detected(recognised);  // the only MST
+  const Time load = recognised + 3 * b.mclk();
+  b.run_to(load + 4 * kCycle * kMicrosecond);
+  std::vector<Time> starts;
+  for (std::int64_t k = 0; k < 4; ++k) {
+    starts.push_back(load + k * kCycle * kMicrosecond + (kStartDelay + (100 - 3) * kP) * b.mclk());
+  }
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
+// The unit on its own, without a Chip: scheduler, register file, signals.
+TEST(DivClk, WorksWithoutAChip) {
+  sim::Scheduler scheduler;
+  RegisterFile regs(Variant::Sercon816);
+  sim::Signal int0("INT0"), int1("INT1"), cyc_clk("CYC_CLK"), div_clk("DIV_CLK");
+  const Time t = 31'250;
+  TimeBase time_base(scheduler, regs, t);
+  Interrupts interrupts(
+      regs, [&](bool h) { int0.set(h); }, [&](bool h) { int1.set(h); });
+  CycleControl cycles(time_base, interrupts, cyc_clk);
+  DivClk div(time_base, interrupts, [&](bool h) { div_clk.set(h); });
+  for (ChipUnit* unit : std::initializer_list<ChipUnit*>{&interrupts, &time_base, &cycles, &div}) {
+    unit->reset(ResetCause::PowerOn);
+  }
+  for (ChipUnit* unit : std::initializer_list<ChipUnit*>{&interrupts, &time_base, &cycles, &div}) {
+    unit->release();
+  }
+  PinLog log(scheduler, div_clk);
+  regs.bus_write(kClockDiv, kStartDelay << 8 | (kP - 1));
+  regs.bus_write(kTcntst, kStartValue);
+  regs.bus_write(kTscyc0, kCycle);
+  regs.bus_write(kTdivclk, 20);
+  regs.bus_write(kDivCtrl, 1);
+  regs.bus_write(kIen0A, kIntDivclk);
+  regs.bus_write(kSerMode, kRegmode);
+  scheduler.run_until(kCycle * kMicrosecond - 1);
+  const Time start = (kStartDelay + (20 - kStartValue) * kP) * t;
+  EXPECT_EQ(log.changes, (std::vector<PinLog::Change>{{start, Level::High},
+                                                      {start + kMicrosecond, Level::Low}}));
+  EXPECT_TRUE(int0.high());
+}
+
+}  // namespace
+}  // namespace sercon::chip
