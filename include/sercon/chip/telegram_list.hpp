@@ -1,0 +1,99 @@
+// The list walk of one cycle (docs/telegram-processing.md, "The list walk"): from COMPT0 /
+// COMPT1 along the PT pointers, one item at a time as the hardware does (the next header
+// is read when the present item starts), each item waiting for its time on the cycle
+// counter:
+//  - transmit header: due at the step out of TRT; the client sends (or not), the walk
+//    goes on at once;
+//  - receive header: waits for its telegram. TCHK = 1: the opening flag must start in the
+//    window TRT - kWindowUs .. TRT + kWindowUs µs; the header is missed when the window
+//    closes empty. TCHK = 0: any time until the cycle ends. ACHK = 1: only its address;
+//  - end marker: INT_ENDMK at the step out of TEND; the walk is over.
+// An item whose time has already passed when it is read is late: a transmit telegram is
+// not sent, a receive header is missed, an end marker ends the list at once. A fault (a
+// pointer or container beyond the RAM, kind 10, more items than the RAM can hold) stops
+// the walk until the next cycle.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "sercon/chip/telegram_header.hpp"
+#include "sercon/chip/telegram_ram.hpp"
+#include "sercon/chip/time_base.hpp"
+
+namespace sercon::chip {
+
+struct ListItem {
+  telegram::Kind kind = telegram::Kind::EndMarker;
+  std::uint16_t address = 0;  // RAM word of word 0
+  std::uint16_t word0 = 0;
+  std::uint16_t time = 0;    // TRT or TEND (µs after the end of the MST)
+  std::uint16_t length = 0;  // TLEN, data words
+  std::uint16_t next = 0;    // PT
+
+  std::uint8_t adr() const { return static_cast<std::uint8_t>(word0 & telegram::kAdrMask); }
+  bool has(std::uint16_t bit) const { return (word0 & bit) != 0; }
+};
+
+// What the walk asks of the telegram processor.
+class ListClient {
+ public:
+  virtual ~ListClient() = default;
+  virtual void transmit_due(const ListItem& item) = 0;
+  virtual void receive_missed(const ListItem& item) = 0;
+  virtual void end_reached(const ListItem& item) = 0;
+  virtual void list_fault(const ListFault& fault) = 0;
+};
+
+class TelegramList {
+ public:
+  // Half-width of the TCHK window in µs (project decision).
+  static constexpr std::int64_t kWindowUs = 2;
+
+  enum class Match : std::uint8_t {
+    NotExpected,   // no receive header waits, or the telegram is outside its window
+    OtherAddress,  // in the window of an ACHK = 1 header, but another address
+    Accepted,
+  };
+
+  TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& client);
+  ~TelegramList();
+  TelegramList(const TelegramList&) = delete;
+  TelegramList& operator=(const TelegramList&) = delete;
+
+  // A cycle starts: a receive header still waiting is missed, then the walk starts at
+  // the list RAM word `list_pointer` names (COMPT0 or COMPT1).
+  void start(std::uint16_t list_pointer);
+  // Forget everything (reset, mode change); no client calls.
+  void stop();
+
+  // A telegram whose opening flag began at `start` brings `address`: is it the waiting
+  // receive header's? Accepted: `item` is that header, and the walk has moved on.
+  Match offer(sim::Time start, std::uint8_t address, ListItem& item);
+
+  // Items read since the last start (for tests and faults).
+  std::uint32_t items_read() const { return items_read_; }
+
+ private:
+  enum class State : std::uint8_t { Idle, Transmit, Receive, End };
+
+  void walk(std::uint16_t address);
+  bool arm(const ListItem& item);  // false: the item is already over, walk on
+  ListItem read_item(std::uint16_t address);
+  void fire_transmit();
+  void close_window();
+  void fire_end();
+  void cancel_event();
+  void fault(const ListFault& fault);
+
+  TimeBase& time_base_;
+  TelegramRam& ram_;
+  ListClient& client_;
+  State state_ = State::Idle;
+  ListItem item_;
+  TimeBase::CycleEvent event_ = 0;
+  sim::Time window_opens_ = std::numeric_limits<sim::Time>::min();
+  std::uint32_t items_read_ = 0;
+};
+
+}  // namespace sercon::chip

@@ -1,0 +1,100 @@
+// The telegram processor (datasheet §1 "Telegram processing", 4.2; delta spec 2.6.2, 2.9,
+// 2.10; docs/telegram-processing.md): walks the DPRAM telegram list of the phase in every
+// cycle, sends the list's telegrams and the master's MST through the serial unit, stores
+// received telegrams, and keeps the status words, counters and interrupts of all that.
+//
+// Cycles come from the time base: a slave's list starts at every cycle start the MST (or
+// the free-wheel) makes, a master's at every cycle start of its timer / CYC_CLK; times in
+// the list are cycle-counter values (µs after the end of the MST at this node, for a
+// master: of its cycle, see the document). Work happens per telegram, never per bit.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "sercon/chip/chip_unit.hpp"
+#include "sercon/chip/cycle_control.hpp"
+#include "sercon/chip/dma_port.hpp"
+#include "sercon/chip/field_ref.hpp"
+#include "sercon/chip/interrupts.hpp"
+#include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/service_channel_port.hpp"
+#include "sercon/chip/telegram_list.hpp"
+#include "sercon/chip/telegram_master.hpp"
+#include "sercon/chip/telegram_ram.hpp"
+#include "sercon/chip/telegram_receive.hpp"
+#include "sercon/chip/telegram_transmit.hpp"
+#include "sercon/chip/time_base.hpp"
+#include "sercon/sim/scheduler.hpp"
+
+namespace sercon::chip {
+
+class Chip;
+
+class TelegramProcessor : public ChipUnit, private ListClient {
+ public:
+  explicit TelegramProcessor(Chip& chip);
+  ~TelegramProcessor() override;
+
+  void reset(ResetCause cause) override;
+
+  // The service-container engine (next to come); nullptr restores the pass-through.
+  void set_service_channel_port(ServiceChannelPort* port);
+
+  // Diagnostics the registers do not show (docs/telegram-processing.md, "Bad lists"):
+  // list walks stopped by a fault, and list telegrams not sent because the own
+  // transmitter was still busy (or its clocks off) at their time.
+  std::uint64_t list_faults() const { return list_faults_; }
+  std::uint64_t transmissions_skipped() const { return skipped_; }
+
+ private:
+  struct Receiving {
+    ListItem item;
+    sim::Time start = 0;
+  };
+
+  bool master() const { return regmode_.on(regs_); }
+  std::uint8_t phase() const;
+  bool address_flag_phase() const;  // slave in CP1 / CP2: FLMDTADR gates the ATs
+  ServiceChannelPort& port() { return *port_; }
+
+  void on_cycle_start(const CycleStart& start);
+  void on_send_mst();
+  void on_telegram_start(sim::Time start, std::uint8_t address);
+  void on_telegram(const ReceivedTelegram& telegram);
+  void on_mst(const wire::DecodedFrame& frame, sim::Time detected);
+  TelegramList::Match offer(sim::Time start, std::uint8_t address);
+  void finish_receive(const wire::DecodedFrame& frame);
+  void after_service_work(sim::Time work);
+
+  // ListClient
+  void transmit_due(const ListItem& item) override;
+  void receive_missed(const ListItem& item) override;
+  void end_reached(const ListItem& item) override;
+  void list_fault(const ListFault& fault) override;
+
+  Chip& chip_;
+  RegisterFile& regs_;
+  sim::Scheduler& scheduler_;
+  TimeBase& time_base_;
+  CycleControl& cycle_control_;
+  Interrupts& interrupts_;
+  SerialUnit& serial_;
+  DmaPort& dma_;
+  FieldRef regmode_, entmt_, phas0_, phasr_, flmdtadr_;
+  TelegramRam ram_;
+  TelegramList list_;
+  TransmitPath transmit_;
+  ReceivePath receive_;
+  MasterMst mst_;
+  PassThroughServiceChannel pass_through_;
+  ServiceChannelPort* port_ = &pass_through_;
+  std::optional<Receiving> receiving_;
+  sim::Scheduler::EventId tend_event_{};
+  sim::Scheduler::EventId rscend_event_{};
+  sim::Time rscend_at_ = 0;
+  std::uint64_t list_faults_ = 0;
+  std::uint64_t skipped_ = 0;
+};
+
+}  // namespace sercon::chip

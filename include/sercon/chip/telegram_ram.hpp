@@ -1,0 +1,51 @@
+// The telegram processor's view of the DPRAM: word accesses through the chip's internal
+// RAM port (so BUSYN sees them), with the bounds check that turns bad pointers into a
+// defined list fault instead of an out-of-range access (docs/telegram-processing.md,
+// "Bad lists").
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+
+#include "sercon/chip/chip.hpp"
+
+namespace sercon::chip {
+
+// A list structure reaches beyond the RAM, loops, or has no valid kind. Thrown by the
+// walk, caught where a list item is handled: that list stops for the rest of the cycle.
+class ListFault : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class TelegramRam {
+ public:
+  explicit TelegramRam(Chip& chip) : chip_(chip), size_(chip.ram().size()) {}
+
+  std::uint16_t size() const { return size_; }
+  bool contains(std::uint32_t word) const { return word < size_; }
+
+  std::uint16_t read(std::uint32_t word) {
+    check(word);
+    return chip_.tp_ram_read(static_cast<std::uint16_t>(word));
+  }
+  void write(std::uint32_t word, std::uint16_t value) {
+    check(word);
+    chip_.tp_ram_write(static_cast<std::uint16_t>(word), value);
+  }
+  // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
+  void count_error(std::uint32_t word) {
+    const std::uint16_t n = read(word);
+    if (n != 0xFFFF) write(word, static_cast<std::uint16_t>(n + 1));
+  }
+
+ private:
+  void check(std::uint32_t word) const {
+    if (word >= size_) throw ListFault("list structure beyond the RAM");
+  }
+
+  Chip& chip_;
+  std::uint16_t size_;
+};
+
+}  // namespace sercon::chip

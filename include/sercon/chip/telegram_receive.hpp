@@ -1,0 +1,45 @@
+// A receive header at work (datasheet 4.2.1/4.2.2; docs/telegram-processing.md,
+// "Receive"): VAL at the start and the end of the telegram, the data words stored by POS
+// into the receive containers (single buffer, the invalid buffer of a double buffer, or
+// the DMA receive FIFO), service containers handed on, RERR / NERR / ADR at the end; a
+// header whose telegram did not come gets RERR and NERR + 1.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sercon/chip/dma_port.hpp"
+#include "sercon/chip/service_channel_port.hpp"
+#include "sercon/chip/telegram_list.hpp"
+#include "sercon/chip/telegram_ram.hpp"
+#include "sercon/wire/decoder.hpp"
+
+namespace sercon::chip {
+
+class ReceivePath {
+ public:
+  struct Outcome {
+    bool error = false;          // RERR: errored (FCS, framing, length)
+    sim::Time service_work = 0;  // the longest service-container work it started
+  };
+
+  ReceivePath(TelegramRam& ram, DmaPort& dma) : ram_(ram), dma_(dma) {}
+
+  // The telegram begins (its address is in): single buffer and DMA data become invalid.
+  void begin(const ListItem& item);
+  // The telegram has been detected (ended, or cut off by an error).
+  Outcome finish(const ListItem& item, const wire::DecodedFrame& frame, ServiceChannelPort& port);
+  // No telegram for the header in this cycle.
+  void missed(const ListItem& item);
+
+ private:
+  void take_words(const wire::DecodedFrame& frame);
+  sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
+
+  TelegramRam& ram_;
+  DmaPort& dma_;
+  std::vector<std::uint16_t> words_;  // the telegram's data words that arrived
+  std::vector<std::uint16_t> dma_words_;
+};
+
+}  // namespace sercon::chip

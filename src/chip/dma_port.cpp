@@ -1,0 +1,228 @@
+#include "sercon/chip/dma_port.hpp"
+
+#include "sercon/chip/pin_bus.hpp"
+#include "sercon/chip/required_unit.hpp"
+
+namespace sercon::chip {
+
+DmaPort::DmaPort(Chip& chip)
+    : chip_(chip),
+      regs_(chip.regs()),
+      interrupts_(required_unit<Interrupts>(chip, "DmaPort")),
+      rx_enable_(field_ref("DMARXEN", chip.variant())),
+      tx_enable_(field_ref("DMATXEN", chip.variant())),
+      rx_count_(field_ref("RXCNT", chip.variant())),
+      tx_count_(field_ref("TXCNT", chip.variant())) {
+  for (Pin p : {Pin::RDN, Pin::WRN, Pin::BUSMODE0, Pin::BUSMODE1}) {
+    chip_.pin(p).watch([this](sim::Level) { on_strobe_pin(); });
+  }
+  regs_.on_write(rx_enable_.address,
+                 [this](std::uint16_t, std::uint16_t before) { on_control_write(before); });
+}
+
+void DmaPort::reset(ResetCause) {
+  rx_.clear();
+  tx_.clear();
+  rx_word_open_ = false;
+  tx_partial_ = 0;
+  tx_writing_ = false;
+  refresh();
+}
+
+// Clearing an enable empties that FIFO: its words belong to a transfer the µP gave up.
+void DmaPort::on_control_write(std::uint16_t before) {
+  const std::uint16_t now = regs_.value(rx_enable_.address);
+  if ((before & rx_enable_.mask) && !(now & rx_enable_.mask)) {
+    rx_.clear();
+    rx_word_open_ = false;
+  }
+  if ((before & tx_enable_.mask) && !(now & tx_enable_.mask)) {
+    tx_.clear();
+    tx_partial_ = 0;
+  }
+  refresh();
+}
+
+void DmaPort::refresh() {
+  rx_count_.put(regs_, static_cast<std::uint16_t>(rx_.size()));
+  tx_count_.put(regs_, static_cast<std::uint16_t>(tx_.size()));
+  // A word whose read has begun no longer counts as readable; a word whose write has begun
+  // already counts as written (Table 1: both requests drop at the beginning of the access).
+  const std::size_t readable = rx_.size() - (rx_word_open_ && !rx_.empty() ? 1 : 0);
+  const std::size_t claimed = tx_.size() + (tx_writing_ ? 1 : 0);
+  chip_.set_output(Pin::DMAREQR, rx_enabled() && readable > 0);
+  chip_.set_output(Pin::DMAREQT, tx_enabled() && claimed < kDepth);
+}
+
+// --- telegram processor's side ----------------------------------------------------------
+
+void DmaPort::receive(std::span<const std::uint16_t> words) {
+  bool lost = false;
+  for (std::uint16_t w : words) lost |= !(rx_enabled() && rx_.push(w));
+  if (lost) interrupts_.raise(Irq::DmaErr);
+  refresh();
+}
+
+void DmaPort::transmit(std::span<std::uint16_t> words) {
+  bool missing = false;
+  for (std::uint16_t& w : words) {
+    if (!(tx_enabled() && tx_.pop(w))) {
+      w = 0;
+      missing = true;
+    }
+  }
+  if (missing) interrupts_.raise(Irq::DmaErr);
+  refresh();
+}
+
+// --- accesses -------------------------------------------------------------------------
+
+bool DmaPort::read_word(bool completes, std::uint16_t& word) {
+  if (!rx_enabled() || rx_.empty()) {
+    interrupts_.raise(Irq::DmaErr);
+    rx_word_open_ = false;
+    refresh();
+    return false;
+  }
+  if (completes) {
+    rx_.pop(word);
+    rx_word_open_ = false;
+  } else {
+    word = rx_.front();
+    rx_word_open_ = true;
+  }
+  refresh();
+  return true;
+}
+
+void DmaPort::begin_write(bool completes) {
+  if (!completes) return;
+  tx_writing_ = true;
+  refresh();
+}
+
+void DmaPort::end_write(bool completes, std::uint16_t bits, std::uint16_t mask) {
+  tx_partial_ = static_cast<std::uint16_t>((tx_partial_ & ~mask) | (bits & mask));
+  if (!completes) return;  // 8-bit bus: the first byte waits for the second
+  tx_writing_ = false;
+  if (!(tx_enabled() && tx_.push(tx_partial_))) interrupts_.raise(Irq::DmaErr);
+  refresh();
+}
+
+std::uint16_t DmaPort::acknowledge_read() {
+  std::uint16_t word = 0xFFFF;
+  if (!chip_.input_high(Pin::BUSWIDTH)) {
+    std::uint16_t first = 0;
+    read_word(false, first);  // A0 = 0
+  }
+  return read_word(true, word) ? word : std::uint16_t{0xFFFF};
+}
+
+void DmaPort::acknowledge_write(std::uint16_t word) {
+  if (!chip_.input_high(Pin::BUSWIDTH)) {
+    const ByteLanes low = lanes(0);
+    begin_write(false);
+    end_write(false, word, low.word_mask());
+    const ByteLanes high = lanes(1);
+    begin_write(true);
+    end_write(true, word, high.word_mask());
+    return;
+  }
+  begin_write(true);
+  end_write(true, word, 0xFFFF);
+}
+
+// --- pins -----------------------------------------------------------------------------
+
+// The strobe decoding of the bus interface (datasheet Table 1, BUSMODE0/1, RDN, WRN).
+DmaPort::Strobes DmaPort::strobes() const {
+  Strobes s;
+  const bool rdn = chip_.input_high(Pin::RDN);
+  const bool wrn = chip_.input_high(Pin::WRN);
+  if (!chip_.input_high(Pin::BUSMODE0)) {
+    s.read = !rdn;
+    s.write = !wrn && rdn;
+    return s;
+  }
+  const bool strobe = chip_.input_high(Pin::BUSMODE1) ? rdn : !rdn;
+  s.read = strobe && wrn;
+  s.write = strobe && !wrn;
+  return s;
+}
+
+ByteLanes DmaPort::lanes(unsigned a0) const {
+  return byte_lanes(false, chip_.input_high(Pin::BYTEDIR), static_cast<std::uint16_t>(a0), false);
+}
+
+unsigned DmaPort::address_a0() const {
+  if (chip_.input_high(Pin::ADMUX)) {
+    const auto* bus = const_cast<Chip&>(chip_).unit<PinBus>();
+    return bus ? (bus->latched_address() & 1u) : 0u;
+  }
+  return chip_.input_high(Pin::A0) ? 1u : 0u;
+}
+
+void DmaPort::on_strobe_pin() {
+  const Strobes now = strobes();
+  if (active_.read && !now.read) read_ends();
+  if (active_.write && !now.write) write_ends();
+  const bool read_starts_now = !active_.read && now.read;
+  const bool write_starts_now = !active_.write && now.write;
+  active_ = now;
+  if (read_starts_now) read_starts();
+  if (write_starts_now) write_starts();
+}
+
+void DmaPort::read_starts() {
+  if (chip_.input_high(Pin::DMAACKRN)) return;
+  const bool bus16 = chip_.input_high(Pin::BUSWIDTH);
+  const unsigned a0 = bus16 ? 1u : address_a0();
+  std::uint16_t word = 0;
+  if (!read_word(a0 == 1, word)) return;  // underrun: D15-0 float
+  const ByteLanes l = bus16 ? ByteLanes{true, true, false, true} : lanes(a0);
+  driven_ = l.data_mask();
+  const std::uint16_t data = l.to_data(word);
+  for (unsigned bit = 0; bit < 16; ++bit) {
+    if (driven_ & (1u << bit)) chip_.set_output(data_pin(bit), (data >> bit & 1u) != 0);
+  }
+}
+
+void DmaPort::read_ends() {
+  for (unsigned bit = 0; bit < 16; ++bit) {
+    if (driven_ & (1u << bit)) chip_.set_output(data_pin(bit), sim::Level::HighZ);
+  }
+  driven_ = 0;
+}
+
+void DmaPort::write_starts() {
+  write_acknowledged_ = !chip_.input_high(Pin::DMAACKTN);
+  if (!write_acknowledged_) return;
+  const bool bus16 = chip_.input_high(Pin::BUSWIDTH);
+  begin_write(bus16 || address_a0() == 1);
+}
+
+// Data is taken at the end of the strobe, as for register and RAM writes.
+void DmaPort::write_ends() {
+  const bool acknowledged = write_acknowledged_ && !chip_.input_high(Pin::DMAACKTN);
+  write_acknowledged_ = false;
+  if (!acknowledged) {
+    if (tx_writing_) {
+      tx_writing_ = false;
+      refresh();
+    }
+    return;
+  }
+  std::uint16_t data = 0;
+  for (unsigned bit = 0; bit < 16; ++bit) {
+    if (chip_.input_high(data_pin(bit))) data = static_cast<std::uint16_t>(data | 1u << bit);
+  }
+  if (chip_.input_high(Pin::BUSWIDTH)) {
+    end_write(true, data, 0xFFFF);
+    return;
+  }
+  const unsigned a0 = address_a0();
+  const ByteLanes l = lanes(a0);
+  end_write(a0 == 1, l.to_word(data), l.word_mask());
+}
+
+}  // namespace sercon::chip

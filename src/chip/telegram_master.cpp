@@ -1,0 +1,65 @@
+#include "sercon/chip/telegram_master.hpp"
+
+#include <array>
+
+#include "sercon/chip/telegram_header.hpp"
+
+namespace sercon::chip {
+
+MasterMst::MasterMst(TimeBase& time_base, Interrupts& interrupts, SerialUnit& serial,
+                     TelegramRam& ram)
+    : time_base_(time_base),
+      regs_(time_base.regs()),
+      interrupts_(interrupts),
+      serial_(serial),
+      ram_(ram),
+      phas0_(field_ref("PHAS0", regs_.variant())),
+      tcycdel_(field_ref("TCYCDEL", regs_.variant())),
+      jtrdel1_(field_ref("JTRDEL1", regs_.variant())),
+      jtrdel2_(field_ref("JTRDEL2", regs_.variant())) {}
+
+void MasterMst::error() {
+  interrupts_.raise(Irq::RetMst);
+  ram_.count_error(telegram::kNmsterr);
+}
+
+bool MasterMst::send() {
+  if (awaiting_) {  // the last one never came back
+    awaiting_ = false;
+    error();
+  }
+  time_base_.cancel(window_end_);
+  window_end_ = 0;
+  const sim::Time now = time_base_.scheduler().now();
+  if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmit_free_at()) {
+    ram_.count_error(telegram::kNmsterr);
+    return false;
+  }
+  const std::array<std::uint8_t, 1> phase{static_cast<std::uint8_t>(phas0_.get(regs_))};
+  serial_.send(now, 0xFF, phase);
+  awaiting_ = true;
+  if (jtrdel2_.get(regs_) != 0) {
+    window_end_ = time_base_.at_cycle_time(jtrdel2_.get(regs_), [this] { window_ends(); });
+  }
+  return true;
+}
+
+void MasterMst::window_ends() {
+  window_end_ = 0;
+  if (!awaiting_) return;
+  awaiting_ = false;
+  error();
+}
+
+void MasterMst::returned() {
+  if (!awaiting_) return;  // not ours to judge: already judged missing, or none sent
+  awaiting_ = false;
+  time_base_.cancel(window_end_);
+  window_end_ = 0;
+  const std::uint16_t at = time_base_.tcnt();
+  tcycdel_.put(regs_, at);
+  const std::uint16_t last = jtrdel2_.get(regs_);
+  if (last != 0 && (at < jtrdel1_.get(regs_) || at > last)) error();
+}
+
+}  // namespace sercon::chip

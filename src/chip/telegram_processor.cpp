@@ -1,0 +1,229 @@
+#include "sercon/chip/telegram_processor.hpp"
+
+#include "sercon/chip/required_unit.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using telegram::kCycl;
+using telegram::kEn;
+
+constexpr std::uint8_t kMstAddress = 0xFF;
+
+// An MST is address 255 with one data byte (sercos-facts §2); one with a bad FCS is still
+// an MST (a broken one), never a list telegram.
+bool is_mst(const wire::DecodedFrame& frame) {
+  const bool whole =
+      frame.error == wire::FrameError::None || frame.error == wire::FrameError::BadFcs;
+  return frame.address == kMstAddress && whole && frame.data.size() == 1;
+}
+
+}  // namespace
+
+TelegramProcessor::TelegramProcessor(Chip& chip)
+    : chip_(chip),
+      regs_(chip.regs()),
+      scheduler_(chip.scheduler()),
+      time_base_(required_unit<TimeBase>(chip, "TelegramProcessor")),
+      cycle_control_(required_unit<CycleControl>(chip, "TelegramProcessor")),
+      interrupts_(required_unit<Interrupts>(chip, "TelegramProcessor")),
+      serial_(required_unit<SerialUnit>(chip, "TelegramProcessor")),
+      dma_(required_unit<DmaPort>(chip, "TelegramProcessor")),
+      regmode_(field_ref("REGMODE", chip.variant())),
+      entmt_(field_ref("ENTMT", chip.variant())),
+      phas0_(field_ref("PHAS0", chip.variant())),
+      phasr_(field_ref("PHASR", chip.variant())),
+      flmdtadr_(field_ref("FLMDTADR", chip.variant())),
+      ram_(chip),
+      list_(time_base_, ram_, *this),
+      transmit_(ram_, dma_),
+      receive_(ram_, dma_),
+      mst_(time_base_, interrupts_, serial_, ram_) {
+  time_base_.on_cycle_start([this](const CycleStart& start) { on_cycle_start(start); });
+  cycle_control_.on_send_mst([this] { on_send_mst(); });
+  serial_.on_telegram_start(
+      [this](sim::Time start, std::uint8_t address) { on_telegram_start(start, address); });
+  serial_.on_telegram([this](const ReceivedTelegram& telegram) { on_telegram(telegram); });
+}
+
+// Only the scheduler is touched: the time base may be gone (it cancels its own events).
+TelegramProcessor::~TelegramProcessor() {
+  scheduler_.cancel(tend_event_);
+  scheduler_.cancel(rscend_event_);
+}
+
+void TelegramProcessor::reset(ResetCause) {
+  list_.stop();
+  mst_.stop();
+  receiving_.reset();
+  scheduler_.cancel(tend_event_);
+  scheduler_.cancel(rscend_event_);
+  tend_event_ = {};
+  rscend_event_ = {};
+}
+
+void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
+  port_ = port != nullptr ? port : &pass_through_;
+}
+
+std::uint8_t TelegramProcessor::phase() const {
+  return static_cast<std::uint8_t>((master() ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
+}
+
+// Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it.
+bool TelegramProcessor::address_flag_phase() const {
+  const std::uint8_t p = phase();
+  return !master() && (p == 1 || p == 2);
+}
+
+// --- cycles -----------------------------------------------------------------------------
+
+void TelegramProcessor::on_cycle_start(const CycleStart& start) {
+  const bool own_kind =
+      master() ? start.kind == CycleKind::Master : start.kind != CycleKind::Master;
+  if (!own_kind) return;
+  if (start.kind == CycleKind::Substitute) {
+    try {
+      ram_.count_error(telegram::kNmsterr);  // a cycle without a valid MST
+    } catch (const ListFault& f) {
+      list_fault(f);
+    }
+  }
+  list_.start(phase() <= 2 ? telegram::kCompt0 : telegram::kCompt1);
+}
+
+void TelegramProcessor::on_send_mst() {
+  if (!master()) return;
+  try {
+    mst_.send();
+  } catch (const ListFault& f) {
+    list_fault(f);
+  }
+}
+
+// --- reception --------------------------------------------------------------------------
+
+void TelegramProcessor::on_telegram_start(sim::Time start, std::uint8_t address) {
+  // Address 255 may be an MST, which is never a list telegram: decided at its detection.
+  if (address == kMstAddress) return;
+  offer(start, address);
+}
+
+TelegramList::Match TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
+  ListItem item;
+  const TelegramList::Match match = list_.offer(start, address, item);
+  const bool flag_header = address_flag_phase() && item.has(telegram::kAchk);
+  if (match == TelegramList::Match::Accepted) {
+    if (flag_header) flmdtadr_.set(regs_, true);
+  } else if (match == TelegramList::Match::OtherAddress) {
+    // Delta spec 2.9: the 410B forgets the request only when an MDT with another address
+    // comes; the 816 when it starts the answer.
+    if (address_flag_phase() && chip_.variant() == Variant::Sercon410B) {
+      flmdtadr_.set(regs_, false);
+    }
+    return match;
+  } else {
+    return match;
+  }
+  try {
+    if (receiving_) receive_.missed(receiving_->item);  // never detected: lost
+    receiving_ = Receiving{item, start};
+    receive_.begin(item);
+  } catch (const ListFault& f) {
+    receiving_.reset();
+    list_fault(f);
+  }
+  return match;
+}
+
+void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
+  const wire::DecodedFrame& frame = telegram.frame;
+  if (is_mst(frame)) {
+    if (frame.ok()) on_mst(frame, telegram.detected);
+    return;
+  }
+  if (frame.address == kMstAddress &&
+      offer(telegram.start, kMstAddress) != TelegramList::Match::Accepted) {
+    return;
+  }
+  if (receiving_ && receiving_->start == telegram.start) finish_receive(frame);
+}
+
+void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time detected) {
+  if (master()) {
+    mst_.returned();
+    return;
+  }
+  phasr_.put(regs_, frame.data[0]);
+  cycle_control_.mst_detected(detected);
+}
+
+void TelegramProcessor::finish_receive(const wire::DecodedFrame& frame) {
+  const ListItem item = receiving_->item;
+  receiving_.reset();
+  ReceivePath::Outcome outcome;
+  try {
+    outcome = receive_.finish(item, frame, port());
+  } catch (const ListFault& f) {
+    list_fault(f);
+    return;
+  }
+  interrupts_.raise(Irq::Rend);
+  if (outcome.error) interrupts_.raise(Irq::Rerr);
+  after_service_work(outcome.service_work);
+}
+
+// Delta spec 2.10.2: INT_RSCEND once the service-container work after a receive telegram is
+// done (at once when there is none). Overlapping work ends with the later of the two.
+void TelegramProcessor::after_service_work(sim::Time work) {
+  if (work <= 0) {
+    if (!scheduler_.pending(rscend_event_)) interrupts_.raise(Irq::Rscend);
+    return;
+  }
+  const sim::Time at = scheduler_.now() + work;
+  if (scheduler_.pending(rscend_event_)) {
+    if (at <= rscend_at_) return;
+    scheduler_.cancel(rscend_event_);
+  }
+  rscend_at_ = at;
+  rscend_event_ = scheduler_.at(at, [this] {
+    rscend_event_ = {};
+    interrupts_.raise(Irq::Rscend);
+  });
+}
+
+void TelegramProcessor::receive_missed(const ListItem& item) {
+  receive_.missed(item);
+  interrupts_.raise(Irq::Rerr);
+}
+
+// --- transmission -----------------------------------------------------------------------
+
+void TelegramProcessor::transmit_due(const ListItem& item) {
+  if (!entmt_.on(regs_)) return;  // delta spec 2.6.2: ENTMT = 0 suppresses ATs and MDTs
+  if (!item.has(kCycl) && !item.has(kEn)) return;
+  const bool flag_gated = address_flag_phase();
+  if (flag_gated && !flmdtadr_.on(regs_)) return;
+  const sim::Time now = scheduler_.now();
+  if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmit_free_at()) {
+    ++skipped_;
+    return;
+  }
+  const bool val = transmit_.reread_val(item);
+  if (item.has(kEn)) transmit_.clear_send_once(item, val);
+  if (flag_gated && chip_.variant() == Variant::Sercon816) flmdtadr_.set(regs_, false);
+  const auto data = transmit_.gather(item, val, port());
+  const sim::Time end = serial_.send(now, item.adr(), data);
+  // The previous telegram's end may be due at this very instant: raise it now.
+  if (scheduler_.cancel(tend_event_)) interrupts_.raise(Irq::Tend);
+  tend_event_ = scheduler_.at(end, [this] {
+    tend_event_ = {};
+    interrupts_.raise(Irq::Tend);
+  });
+}
+
+void TelegramProcessor::end_reached(const ListItem&) { interrupts_.raise(Irq::Endmk); }
+
+void TelegramProcessor::list_fault(const ListFault&) { ++list_faults_; }
+
+}  // namespace sercon::chip

@@ -1,0 +1,93 @@
+#include "sercon/chip/telegram_receive.hpp"
+
+#include <algorithm>
+
+namespace sercon::chip {
+
+using telegram::kRerr;
+using telegram::kVal;
+
+void ReceivePath::begin(const ListItem& item) {
+  if (telegram::storage_of(item.word0).dbuf && !telegram::storage_of(item.word0).dma) return;
+  const std::uint16_t word0 = ram_.read(item.address);
+  ram_.write(item.address, static_cast<std::uint16_t>(word0 & ~kVal));
+}
+
+void ReceivePath::missed(const ListItem& item) {
+  ram_.write(item.address, static_cast<std::uint16_t>(ram_.read(item.address) | kRerr));
+  ram_.count_error(item.address + telegram::kNerrWord);
+}
+
+// The receiver writes bytes as they arrive and holds the last two back until the closing
+// flag tells data from FCS; a frame cut off by an error never releases those two.
+void ReceivePath::take_words(const wire::DecodedFrame& frame) {
+  const bool whole =
+      frame.error == wire::FrameError::None || frame.error == wire::FrameError::BadFcs;
+  const std::size_t bytes =
+      whole ? frame.data.size() : frame.data.size() - std::min<std::size_t>(2, frame.data.size());
+  words_.resize(bytes / 2);
+  for (std::size_t i = 0; i < words_.size(); ++i) {
+    words_[i] = static_cast<std::uint16_t>(frame.data[2 * i] | frame.data[2 * i + 1] << 8);
+  }
+}
+
+ReceivePath::Outcome ReceivePath::finish(const ListItem& item, const wire::DecodedFrame& frame,
+                                         ServiceChannelPort& port) {
+  Outcome outcome;
+  outcome.error = !frame.ok() || frame.data.size() != 2u * item.length;
+  take_words(frame);
+  const std::uint16_t word0 = ram_.read(item.address);
+  const bool val = (word0 & kVal) != 0;
+  outcome.service_work = store(item, val, !outcome.error, port);
+
+  const telegram::Storage storage = telegram::storage_of(item.word0);
+  auto next = static_cast<std::uint16_t>(word0 & ~(kRerr | kVal));
+  if (outcome.error) next |= kRerr;
+  // Double buffer: VAL names the valid buffer and flips to the one just written when the
+  // telegram was good. Single buffer and DMA: VAL says whether the data is good.
+  const bool next_val = storage.dbuf && !storage.dma ? (val != !outcome.error) : !outcome.error;
+  if (next_val) next |= kVal;
+  if (!item.has(telegram::kAchk)) {
+    next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | frame.address);
+  }
+  ram_.write(item.address, next);
+  if (outcome.error) ram_.count_error(item.address + telegram::kNerrWord);
+  return outcome;
+}
+
+sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
+                             ServiceChannelPort& port) {
+  const telegram::Storage storage = telegram::storage_of(item.word0);
+  sim::Time work = 0;
+  dma_words_.clear();
+  std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
+  for (std::uint32_t n = 0;; ++n) {
+    if (n >= ram_.size()) throw ListFault("receive containers without LASTDC");
+    const telegram::Container c = telegram::container_of(ram_.read(control));
+    const std::uint16_t pos = ram_.read(control + 1);
+    const std::uint32_t data = control + telegram::kReceiveContainerWords;
+    // The words of this container that arrived: POS .. POS + LEN of the telegram.
+    const std::size_t first = std::min<std::size_t>(pos, words_.size());
+    const std::size_t last = std::min<std::size_t>(std::size_t{pos} + c.len, words_.size());
+    const std::span<const std::uint16_t> arrived(words_.data() + first, last - first);
+    std::uint32_t buffer = data;
+    if (storage.dma) {
+      dma_words_.insert(dma_words_.end(), arrived.begin(), arrived.end());
+    } else {
+      // Double buffer: the data goes into the buffer VAL does not name.
+      if (storage.dbuf && !val) buffer += c.len;
+      for (std::uint32_t i = 0; i < arrived.size(); ++i) ram_.write(buffer + i, arrived[i]);
+    }
+    if (c.svfl) {
+      const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
+                                    static_cast<std::uint16_t>(storage.dma ? 0 : buffer)};
+      work = std::max(work, port.after_receive(use, arrived, error_free));
+    }
+    if (c.lastdc) break;
+    control = data + storage.buffer_words(c.len);
+  }
+  if (storage.dma) dma_.receive(dma_words_);
+  return work;
+}
+
+}  // namespace sercon::chip
