@@ -53,6 +53,8 @@ struct DecodedFrame {
 
 class LineDecoder {
  public:
+  // Called for every frame, in line order. The frame is only valid during the call (it
+  // is reused); the sink must not call back into this decoder.
   using Sink = std::function<void(const DecodedFrame&)>;
 
   explicit LineDecoder(Sink sink);
