@@ -5,15 +5,17 @@ namespace sercon::chip {
 using telegram::Kind;
 
 TelegramList::TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& client)
-    : time_base_(time_base), ram_(ram), client_(client) {}
+    : time_base_(time_base), scheduler_(time_base.scheduler()), ram_(ram), client_(client) {}
 
-// The time base may already be gone when units are destroyed; its destructor cancels its
-// own events, so only a live event of ours needs cancelling, and only while it exists.
-TelegramList::~TelegramList() = default;
+// The time base may already be gone when units are destroyed (its destructor cancels its
+// own events); the scheduler outlives every chip.
+TelegramList::~TelegramList() { scheduler_.cancel(window_judge_); }
 
 void TelegramList::cancel_event() {
   if (event_ != 0) time_base_.cancel(event_);
   event_ = 0;
+  scheduler_.cancel(window_judge_);
+  window_judge_ = {};
 }
 
 void TelegramList::stop() {
@@ -69,14 +71,16 @@ ListItem TelegramList::read_item(std::uint16_t address) {
   return item;
 }
 
-// Reads items until one waits for something; items already over are settled on the way.
+void TelegramList::walk(std::uint16_t address) { walk_from(read_item(address)); }
+
+// Arms items until one waits for something; items already over are settled on the way.
 // A loop, not recursion: a long list of late items must not grow the stack.
-void TelegramList::walk(std::uint16_t address) {
+void TelegramList::walk_from(ListItem item) {
   for (;;) {
-    item_ = read_item(address);
+    item_ = item;
     if (arm(item_)) return;
     if (item_.kind == Kind::EndMarker) return;
-    address = item_.next;
+    item = read_item(item_.next);
   }
 }
 
@@ -86,20 +90,8 @@ bool TelegramList::arm(const ListItem& item) {
       event_ = time_base_.at_cycle_time(item.time, [this] { fire_transmit(); });
       state_ = event_ != 0 ? State::Transmit : State::Idle;
       return event_ != 0;  // late: not sent in this cycle
-    case Kind::Receive: {
-      state_ = State::Receive;
-      if (!item.has(telegram::kTchk)) {
-        window_opens_ = std::numeric_limits<sim::Time>::min();
-        return true;
-      }
-      const auto opens = time_base_.time_of_cycle_time(item.time - kWindowUs);
-      window_opens_ = opens ? *opens : std::numeric_limits<sim::Time>::min();
-      event_ = time_base_.at_cycle_time(item.time + kWindowUs, [this] { close_window(); });
-      if (event_ != 0) return true;
-      state_ = State::Idle;
-      client_.receive_missed(item);
-      return false;
-    }
+    case Kind::Receive:
+      return arm_receive(item);
     case Kind::EndMarker:
       event_ = time_base_.at_cycle_time(item.time, [this] { fire_end(); });
       state_ = event_ != 0 ? State::End : State::Idle;
@@ -109,6 +101,25 @@ bool TelegramList::arm(const ListItem& item) {
       break;
   }
   return false;
+}
+
+bool TelegramList::arm_receive(const ListItem& item) {
+  state_ = State::Receive;
+  if (!item.has(telegram::kTchk)) return true;
+  const auto opens = time_base_.time_of_cycle_time(item.time - kWindowUs);
+  const auto closes = time_base_.time_of_cycle_time(item.time + kWindowUs);
+  if (!closes) {  // the window is over already
+    state_ = State::Idle;
+    client_.receive_missed(item);
+    return false;
+  }
+  window_opens_ = opens ? *opens : std::numeric_limits<sim::Time>::min();
+  window_closes_ = *closes;
+  window_judge_ = scheduler_.at(*closes + client_.start_report_delay(), [this] {
+    window_judge_ = {};
+    close_window();
+  });
+  return true;
 }
 
 void TelegramList::fire_transmit() {
@@ -124,7 +135,6 @@ void TelegramList::fire_transmit() {
 }
 
 void TelegramList::close_window() {
-  event_ = 0;
   state_ = State::Idle;
   const ListItem item = item_;
   try {
@@ -143,9 +153,8 @@ void TelegramList::fire_end() {
 
 TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, ListItem& item) {
   if (state_ != State::Receive) return Match::NotExpected;
-  if (item_.has(telegram::kTchk)) {
-    const auto closes = time_base_.when(event_);
-    if (start < window_opens_ || !closes || start >= *closes) return Match::NotExpected;
+  if (item_.has(telegram::kTchk) && (start < window_opens_ || start >= window_closes_)) {
+    return Match::NotExpected;
   }
   if (item_.has(telegram::kAchk) && address != item_.adr()) return Match::OtherAddress;
   item = item_;
@@ -157,6 +166,15 @@ TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, L
     fault(f);
   }
   return Match::Accepted;
+}
+
+void TelegramList::reclaim(const ListItem& item) {
+  stop();
+  try {
+    walk_from(item);
+  } catch (const ListFault& f) {
+    fault(f);
+  }
 }
 
 }  // namespace sercon::chip

@@ -103,50 +103,56 @@ void TelegramProcessor::on_send_mst() {
 
 // --- reception --------------------------------------------------------------------------
 
+// Every telegram is offered to the list when its address is in, address 255 too: an MDT
+// to all drives must begin its header as early as any other. One that proves to be an MST
+// at its detection is withdrawn again (withdraw_mst).
 void TelegramProcessor::on_telegram_start(sim::Time start, std::uint8_t address) {
-  // Address 255 may be an MST, which is never a list telegram: decided at its detection.
-  if (address == kMstAddress) return;
   offer(start, address);
 }
 
-TelegramList::Match TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
+void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
   ListItem item;
   const TelegramList::Match match = list_.offer(start, address, item);
-  const bool flag_header = address_flag_phase() && item.has(telegram::kAchk);
-  if (match == TelegramList::Match::Accepted) {
-    if (flag_header) flmdtadr_.set(regs_, true);
-  } else if (match == TelegramList::Match::OtherAddress) {
+  if (match == TelegramList::Match::OtherAddress) {
     // Delta spec 2.9: the 410B forgets the request only when an MDT with another address
     // comes; the 816 when it starts the answer.
     if (address_flag_phase() && chip_.variant() == Variant::Sercon410B) {
       flmdtadr_.set(regs_, false);
     }
-    return match;
-  } else {
-    return match;
+    return;
   }
+  if (match != TelegramList::Match::Accepted) return;
+  if (address_flag_phase() && item.has(telegram::kAchk)) flmdtadr_.set(regs_, true);
   try {
     if (receiving_) receive_.missed(receiving_->item);  // never detected: lost
-    receiving_ = Receiving{item, start};
-    receive_.begin(item);
+    receiving_ = Receiving{item, start, false};
+    receiving_->val_cleared = receive_.begin(item);
   } catch (const ListFault& f) {
     receiving_.reset();
     list_fault(f);
   }
-  return match;
 }
 
 void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   const wire::DecodedFrame& frame = telegram.frame;
+  const bool current = receiving_ && receiving_->start == telegram.start;
   if (is_mst(frame)) {
+    if (current) withdraw_mst();
     if (frame.ok()) on_mst(frame, telegram.detected);
     return;
   }
-  if (frame.address == kMstAddress &&
-      offer(telegram.start, kMstAddress) != TelegramList::Match::Accepted) {
-    return;
+  if (current) finish_receive(frame);
+}
+
+void TelegramProcessor::withdraw_mst() {
+  const Receiving r = *receiving_;
+  receiving_.reset();
+  try {
+    receive_.withdraw(r.item, r.val_cleared);
+  } catch (const ListFault& f) {
+    list_fault(f);
   }
-  if (receiving_ && receiving_->start == telegram.start) finish_receive(frame);
+  list_.reclaim(r.item);
 }
 
 void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time detected) {
@@ -225,5 +231,11 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
 void TelegramProcessor::end_reached(const ListItem&) { interrupts_.raise(Irq::Endmk); }
 
 void TelegramProcessor::list_fault(const ListFault&) { ++list_faults_; }
+
+// The address byte is in after the opening flag and the address with at most one stuffed
+// bit (17 bits); the receiver reports it 5.5 bits + 3..4 MCLK later (docs/serial-and-ring.md).
+sim::Time TelegramProcessor::start_report_delay() const {
+  return 23 * serial_.bit_period() + 4 * chip_.mclk_period();
+}
 
 }  // namespace sercon::chip

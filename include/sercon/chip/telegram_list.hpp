@@ -5,8 +5,10 @@
 //  - transmit header: due at the step out of TRT; the client sends (or not), the walk
 //    goes on at once;
 //  - receive header: waits for its telegram. TCHK = 1: the opening flag must start in the
-//    window TRT - kWindowUs .. TRT + kWindowUs µs; the header is missed when the window
-//    closes empty. TCHK = 0: any time until the cycle ends. ACHK = 1: only its address;
+//    window TRT - kWindowUs .. TRT + kWindowUs µs; the header is missed when no telegram
+//    began in it, judged once a telegram that began at its end would have been reported
+//    (ListClient::start_report_delay). TCHK = 0: any time until the cycle ends. ACHK = 1:
+//    only its address;
 //  - end marker: INT_ENDMK at the step out of TEND; the walk is over.
 // An item whose time has already passed when it is read is late: a transmit telegram is
 // not sent, a receive header is missed, an end marker ends the list at once. A fault (a
@@ -43,6 +45,8 @@ class ListClient {
   virtual void receive_missed(const ListItem& item) = 0;
   virtual void end_reached(const ListItem& item) = 0;
   virtual void list_fault(const ListFault& fault) = 0;
+  // Longest time from a telegram's opening flag to its start report (address in).
+  virtual sim::Time start_report_delay() const = 0;
 };
 
 class TelegramList {
@@ -70,6 +74,9 @@ class TelegramList {
   // A telegram whose opening flag began at `start` brings `address`: is it the waiting
   // receive header's? Accepted: `item` is that header, and the walk has moved on.
   Match offer(sim::Time start, std::uint8_t address, ListItem& item);
+  // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
+  // it had not been offered (its window may have closed meanwhile: then it is missed).
+  void reclaim(const ListItem& item);
 
   // Items read since the last start (for tests and faults).
   std::uint32_t items_read() const { return items_read_; }
@@ -78,7 +85,9 @@ class TelegramList {
   enum class State : std::uint8_t { Idle, Transmit, Receive, End };
 
   void walk(std::uint16_t address);
+  void walk_from(ListItem item);
   bool arm(const ListItem& item);  // false: the item is already over, walk on
+  bool arm_receive(const ListItem& item);
   ListItem read_item(std::uint16_t address);
   void fire_transmit();
   void close_window();
@@ -87,12 +96,15 @@ class TelegramList {
   void fault(const ListFault& fault);
 
   TimeBase& time_base_;
+  sim::Scheduler& scheduler_;  // outlives the time base when units are destroyed
   TelegramRam& ram_;
   ListClient& client_;
   State state_ = State::Idle;
   ListItem item_;
-  TimeBase::CycleEvent event_ = 0;
+  TimeBase::CycleEvent event_ = 0;          // transmit or end marker due
+  sim::Scheduler::EventId window_judge_{};  // a TCHK header's window is over
   sim::Time window_opens_ = std::numeric_limits<sim::Time>::min();
+  sim::Time window_closes_ = 0;
   std::uint32_t items_read_ = 0;
 };
 

@@ -51,6 +51,7 @@ class TelegramProcessor : public ChipUnit, private ListClient {
   struct Receiving {
     ListItem item;
     sim::Time start = 0;
+    bool val_cleared = false;  // begin() cleared VAL (undone if it proves to be an MST)
   };
 
   bool master() const { return regmode_.on(regs_); }
@@ -63,7 +64,8 @@ class TelegramProcessor : public ChipUnit, private ListClient {
   void on_telegram_start(sim::Time start, std::uint8_t address);
   void on_telegram(const ReceivedTelegram& telegram);
   void on_mst(const wire::DecodedFrame& frame, sim::Time detected);
-  TelegramList::Match offer(sim::Time start, std::uint8_t address);
+  void offer(sim::Time start, std::uint8_t address);
+  void withdraw_mst();
   void finish_receive(const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
 
@@ -72,6 +74,7 @@ class TelegramProcessor : public ChipUnit, private ListClient {
   void receive_missed(const ListItem& item) override;
   void end_reached(const ListItem& item) override;
   void list_fault(const ListFault& fault) override;
+  sim::Time start_report_delay() const override;
 
   Chip& chip_;
   RegisterFile& regs_;

@@ -26,7 +26,10 @@ class ReceivePath {
   ReceivePath(TelegramRam& ram, DmaPort& dma) : ram_(ram), dma_(dma) {}
 
   // The telegram begins (its address is in): single buffer and DMA data become invalid.
-  void begin(const ListItem& item);
+  // Returns whether it cleared VAL.
+  bool begin(const ListItem& item);
+  // The telegram proved to be an MST: VAL back as before begin().
+  void withdraw(const ListItem& item, bool cleared);
   // The telegram has been detected (ended, or cut off by an error).
   Outcome finish(const ListItem& item, const wire::DecodedFrame& frame, ServiceChannelPort& port);
   // No telegram for the header in this cycle.

@@ -1,0 +1,271 @@
+// Chips wired into a ring for the telegram-processor tests: a master and slaves on one
+// scheduler, each TxD1 into the next chip's RxD through a test fibre with a fixed delay
+// that logs every telegram leaving a chip. Everything a chip does is programmed as host
+// software does it, through reg_write / ram_write. The arithmetic the tests use to compute
+// expected line times stands on its own (datasheet, facts §5 formulas, the documented
+// decisions), independent of the model's code.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "sercon/chip/chip.hpp"
+#include "sercon/chip/line.hpp"
+#include "sercon/chip/line_decode_memo.hpp"
+#include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/telegram_processor.hpp"
+#include "sercon/sim/scheduler.hpp"
+#include "sercon/wire/decoder.hpp"
+#include "sercon/wire/encoder.hpp"
+
+namespace sercon::chip::telegram_testing {
+
+using sim::Time;
+
+// Register word addresses and bits (register table), spelled out.
+inline constexpr std::uint16_t kSerMode = 0x01;
+inline constexpr std::uint16_t kSerCtrl = 0x02;
+inline constexpr std::uint16_t kTpCtrl = 0x03;
+inline constexpr std::uint16_t kIntStat = 0x04;
+inline constexpr std::uint16_t kPhase = 0x0A;
+inline constexpr std::uint16_t kDmaCtrl = 0x0C;
+inline constexpr std::uint16_t kClockDiv = 0x0E;
+inline constexpr std::uint16_t kTscyc0 = 0x0F;
+inline constexpr std::uint16_t kTscyc1 = 0x10;
+inline constexpr std::uint16_t kTcycdel = 0x11;
+inline constexpr std::uint16_t kTcntst = 0x13;
+inline constexpr std::uint16_t kJtscyc1 = 0x15;
+inline constexpr std::uint16_t kJtscyc2 = 0x16;
+inline constexpr std::uint16_t kJtrdel1 = 0x18;
+inline constexpr std::uint16_t kJtrdel2 = 0x19;
+inline constexpr std::uint16_t kSlvFlags = 0x25;
+inline constexpr std::uint16_t kWdCtrl = 0x28;
+inline constexpr std::uint16_t kTwdog = 0x2A;
+
+inline constexpr std::uint16_t kRepon = 0x0008;      // 0x01 bit 3
+inline constexpr std::uint16_t kRegmode = 0x0020;    // 0x01 bit 5
+inline constexpr std::uint16_t kSwbaud = 0x0040;     // 0x01 bit 6
+inline constexpr std::uint16_t kEntsbaud = 0x0400;   // 0x01 bit 10
+inline constexpr std::uint16_t kSwbaud16 = 0x8000;   // 0x01 bit 15
+inline constexpr std::uint16_t kTxd1Light = 0x0041;  // 0x02: TxD1 driven, transmitter on
+inline constexpr std::uint16_t kEntmt = 0x0100;      // 0x03 bit 8
+inline constexpr std::uint16_t kFlmdtadr = 0x1000;   // 0x25 bit 12
+
+// INTSTAT (0x04) bits.
+inline constexpr std::uint16_t kIntCycst = 1u << 2;
+inline constexpr std::uint16_t kIntRend = 1u << 3;
+inline constexpr std::uint16_t kIntTend = 1u << 4;
+inline constexpr std::uint16_t kIntRerr = 1u << 5;
+inline constexpr std::uint16_t kIntEndmk = 1u << 6;
+inline constexpr std::uint16_t kIntMstMiss = 1u << 9;
+inline constexpr std::uint16_t kIntRetmst = 1u << 10;
+inline constexpr std::uint16_t kIntDmaerr = 1u << 13;
+inline constexpr std::uint16_t kIntRscend = 1u << 6;  // WDCTRL (0x28) bit 6
+
+// One telegram seen leaving a chip's TxD1.
+struct Seen {
+  Time start = 0;
+  Time end = 0;
+  std::uint8_t address = 0;
+  std::vector<std::uint8_t> data;
+  bool ok = false;
+};
+
+// A fibre from a TxD to an RxD with a fixed delay; optionally flips one line bit of the
+// n-th telegram it carries (a bit error on the way).
+class TestFibre final : public LineListener {
+ public:
+  TestFibre(Time delay, LineListener* target) : delay_(delay), target_(target) {}
+
+  void line_condition(Time at, LineCondition condition, Time bit_period) override {
+    if (target_) target_->line_condition(at + delay_, condition, bit_period);
+  }
+  void line_burst(const LineBurst& burst) override {
+    Seen s;
+    s.start = burst.start;
+    s.end = burst.end();
+    const auto decode = decode_burst(burst.bits);
+    if (!decode->frames.empty()) {
+      s.address = decode->frames.front().address;
+      s.data = decode->frames.front().data;
+      s.ok = decode->frames.front().ok();
+    }
+    const bool corrupt = corrupt_countdown_ > 0 && --corrupt_countdown_ == 0;
+    seen.push_back(std::move(s));
+    if (!target_) return;
+    LineBurst out = burst;
+    out.start += delay_;
+    if (corrupt) {
+      wire::LineBits bits = *burst.bits;
+      wire::LineBits flipped;
+      for (std::size_t i = 0; i < bits.size(); ++i) {
+        flipped.push_back(i == corrupt_bit_ ? !bits[i] : bits[i]);
+      }
+      out.bits = std::make_shared<const wire::LineBits>(std::move(flipped));
+    }
+    target_->line_burst(out);
+  }
+
+  // The `n`-th telegram from now (1 = the next) gets line bit `bit` inverted.
+  void corrupt(unsigned n, std::size_t bit) {
+    corrupt_countdown_ = n;
+    corrupt_bit_ = bit;
+  }
+  void cut() { target_ = nullptr; }
+  Time delay() const { return delay_; }
+
+  std::vector<Seen> seen;
+
+ private:
+  Time delay_;
+  LineListener* target_;
+  unsigned corrupt_countdown_ = 0;
+  std::size_t corrupt_bit_ = 0;
+};
+
+// Timing registers of one rate as a real driver computes them (facts §5): MCLKDIV gives
+// the 1 µs tick, TCNTST = floor(t_start + 1), MCLKST = int((TCNTST - t_start) f + 1) with
+// t_start = 5.5 t_bit + 3.5 / f_MCLK.
+struct Timing {
+  std::int64_t mclk_hz = 32'000'000;
+  Time bit = 62'500;  // 16 Mbit/s
+  std::uint16_t mclkdiv = 31;
+  std::uint16_t tcntst = 1;
+  std::uint16_t mclkst = 18;
+
+  Time mclk() const { return sim::period_of_hz(mclk_hz); }
+  std::int64_t tick_edges() const { return mclkdiv + 1; }
+};
+
+inline Timing timing_16mbit() { return Timing{}; }
+// 2 Mbit/s, 32 MHz: t_start = 2.75 + 0.109375 µs; TCNTST = 3; MCLKST = int(4.5 + 1) = 5.
+inline Timing timing_2mbit() { return Timing{32'000'000, 500'000, 31, 3, 5}; }
+
+struct Station {
+  std::unique_ptr<Chip> chip;
+  TelegramProcessor* tp = nullptr;
+  SerialUnit* serial = nullptr;
+};
+
+class Ring {
+ public:
+  // Chip 0 is the master; fibre i runs from chip i to chip i + 1 (the last back to 0).
+  Ring(std::size_t chips, Time fibre_delay, ChipConfig config = {}) {
+    for (std::size_t i = 0; i < chips; ++i) {
+      Station s;
+      s.chip = std::make_unique<Chip>(scheduler, config);
+      s.tp = s.chip->unit<TelegramProcessor>();
+      s.serial = s.chip->unit<SerialUnit>();
+      stations.push_back(std::move(s));
+    }
+    for (std::size_t i = 0; i < chips; ++i) {
+      Station& next = stations[(i + 1) % chips];
+      fibres.push_back(std::make_unique<TestFibre>(fibre_delay, &next.serial->rxd()));
+    }
+    for (std::size_t i = 0; i < chips; ++i) stations[i].serial->connect_txd(1, *fibres[i]);
+  }
+
+  Chip& chip(std::size_t i) { return *stations[i].chip; }
+  TestFibre& fibre_from(std::size_t i) { return *fibres[i]; }
+  void run_for(Time t) { scheduler.run_until(scheduler.now() + t); }
+
+  sim::Scheduler scheduler;
+  std::vector<Station> stations;
+  std::vector<std::unique_ptr<TestFibre>> fibres;
+};
+
+// --- host software ------------------------------------------------------------------------
+
+inline std::uint16_t rate_bits(const Timing& t) {
+  return t.bit == 500'000 ? static_cast<std::uint16_t>(kEntsbaud | kSwbaud16 | kSwbaud) : 0;
+}
+
+// Registers every station needs; the list and the mode come after.
+inline void program_common(Chip& chip, const Timing& t, std::uint16_t tscyc) {
+  chip.reg_write(kSerCtrl, kTxd1Light);
+  chip.reg_write(kClockDiv, static_cast<std::uint16_t>(t.mclkst << 8 | t.mclkdiv));
+  chip.reg_write(kTscyc0, tscyc);
+  chip.reg_write(kTscyc1, tscyc);
+  chip.reg_write(kTcntst, t.tcntst);
+}
+
+// Slave: repeater on, a generous MST window (TCNTST -/+ 5 µs).
+inline void program_slave(Chip& chip, const Timing& t, std::uint16_t tscyc) {
+  chip.reg_write(kSerMode, static_cast<std::uint16_t>(kRepon | rate_bits(t)));
+  program_common(chip, t, tscyc);
+  chip.reg_write(kJtscyc1, static_cast<std::uint16_t>(t.tcntst - 5));
+  chip.reg_write(kJtscyc2, static_cast<std::uint16_t>(t.tcntst + 5));
+}
+
+// Master without its repeater (its own telegrams must not circle the ring forever).
+// Cycles begin when start_master() sets REGMODE.
+inline void program_master(Chip& chip, const Timing& t, std::uint16_t tscyc, std::uint8_t phase) {
+  chip.reg_write(kSerMode, rate_bits(t));
+  program_common(chip, t, tscyc);
+  chip.reg_write(kPhase, phase);
+}
+
+inline void start_master(Chip& chip) {
+  chip.reg_write(kSerMode, static_cast<std::uint16_t>(chip.reg_read(kSerMode) | kRegmode));
+}
+
+inline void enable_transmission(Chip& chip) { chip.reg_write(kTpCtrl, kEntmt); }
+
+// DPRAM structures (datasheet 4.2; transmit header: docs/telegram-processing.md).
+inline void receive_header(Chip& chip, std::uint16_t at, std::uint16_t word0, std::uint16_t time,
+                           std::uint16_t length, std::uint16_t next) {
+  chip.ram_write(at, word0);
+  chip.ram_write(at + 1, time);
+  chip.ram_write(at + 2, length);
+  chip.ram_write(at + 3, next);
+  chip.ram_write(at + 4, 0);  // NERR
+}
+inline void transmit_header(Chip& chip, std::uint16_t at, std::uint16_t word0, std::uint16_t time,
+                            std::uint16_t length, std::uint16_t next) {
+  chip.ram_write(at, word0);
+  chip.ram_write(at + 1, time);
+  chip.ram_write(at + 2, length);
+  chip.ram_write(at + 3, next);
+}
+inline void end_marker(Chip& chip, std::uint16_t at, std::uint16_t tend) {
+  chip.ram_write(at, 0xC000);
+  chip.ram_write(at + 1, tend);
+}
+inline void words(Chip& chip, std::uint16_t at, std::initializer_list<std::uint16_t> values) {
+  for (std::uint16_t v : values) chip.ram_write(at++, v);
+}
+
+// --- expected times, computed from the documented rules ------------------------------------
+
+// A telegram's line length in bits (flags, stuffing), from the wire encoder.
+inline std::size_t line_bits(std::uint8_t address, std::span<const std::uint8_t> data) {
+  wire::LineEncoder encoder;
+  encoder.telegram(address, data);
+  return encoder.size();
+}
+
+inline Time ceil_to(Time t, Time grid) { return (t + grid - 1) / grid * grid; }
+
+// Serial unit: the receiver detects a telegram at the first MCLK edge at or after its end +
+// 5.5 bit + 3 MCLK (facts §5 t_start); the repeater passes a telegram on 2 bit times later,
+// rounded up to the 64 MHz SCLK grid (docs/serial-and-ring.md).
+inline Time detection(Time end, const Timing& t) {
+  return ceil_to(end + (11 * t.bit + 1) / 2 + 3 * t.mclk(), t.mclk());
+}
+inline Time repeated(Time in, const Timing& t) { return ceil_to(in + 2 * t.bit, 15'625); }
+
+// Time base (docs/timing.md): a slave loads its counter with TCNTST at the 3rd MCLK edge
+// after the MST's detection; the counter steps from c to c + 1 ("cycle time c") at
+// load + MCLKST + (c - TCNTST) ticks. A telegram whose time is c begins on the first bit
+// edge at or after that.
+inline Time counter_load_after_detection(Time detected, const Timing& t) {
+  return detected + 3 * t.mclk();
+}
+inline Time cycle_time(Time load, std::uint16_t c, const Timing& t) {
+  return load + (t.mclkst + static_cast<Time>(c - t.tcntst) * t.tick_edges()) * t.mclk();
+}
+inline Time on_bit_grid(Time at, const Timing& t) { return ceil_to(at, t.bit); }
+
+}  // namespace sercon::chip::telegram_testing

@@ -1,0 +1,225 @@
+// A master and two slaves in a ring exchanging CP4 traffic (datasheet §1 "Telegram
+// processing", 4.2; facts §2 cycle, MDT records by position, ATs at T1; facts §5 counter
+// rules; docs/telegram-processing.md). Every telegram's start on every fibre is computed
+// here from the headers, the fibre delays, the documented receiver/repeater delays and the
+// counter rules, and compared to the picosecond; the data written into one chip's DPRAM
+// must arrive in the others'.
+#include <gtest/gtest.h>
+
+#include <array>
+
+#include "telegram_bench.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using namespace telegram_testing;
+
+constexpr Time kFibre = 1'000'000;
+constexpr std::uint16_t kTscyc = 200;
+constexpr std::uint16_t kT1[3] = {0, 20, 40};  // AT times of slaves 1 and 2
+constexpr std::uint16_t kT2 = 80;              // MDT time in the master's cycle
+constexpr std::uint16_t kMasterEnd = 150;
+constexpr std::uint16_t kSlaveEnd = 120;
+constexpr std::uint16_t kList = 0x020;
+
+std::uint16_t counter_at(Time at, Time load, const Timing& t) {
+  const Time first_tick = load + t.mclkst * t.mclk();
+  if (at < first_tick) return t.tcntst;
+  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
+}
+
+// Everything one cycle puts on the fibres, from the rules alone.
+struct Expected {
+  Time mst = 0, mdt = 0;  // at the master's TxD
+  Time load[3] = {};      // slave counter loads
+  Time at[3] = {};        // slave k's AT at its TxD
+  Time mst_rep[3] = {};   // slave k repeats the MST at its TxD
+  Time mdt_rep[3] = {};   // slave k repeats the MDT
+  Time at1_rep2 = 0;      // slave 2 repeats slave 1's AT
+  Time at_back[3] = {};   // AT k at the master's RxD
+  Time mdt_in[3] = {};    // MDT at slave k's RxD
+};
+
+Expected expect(Time cycle_start, const Timing& t) {
+  Expected e;
+  const std::array<std::uint8_t, 1> phase{4};
+  const Time mst_len = static_cast<Time>(line_bits(0xFF, phase)) * t.bit;
+  e.mst = on_bit_grid(cycle_start, t);
+  Time mst_in = e.mst + kFibre;
+  for (int k = 1; k <= 2; ++k) {
+    e.load[k] = counter_load_after_detection(detection(mst_in + mst_len, t), t);
+    e.mst_rep[k] = repeated(mst_in, t);
+    e.at[k] = on_bit_grid(cycle_time(e.load[k], kT1[k], t), t);
+    mst_in = e.mst_rep[k] + kFibre;
+  }
+  e.at1_rep2 = repeated(e.at[1] + kFibre, t);
+  e.at_back[1] = e.at1_rep2 + kFibre;
+  e.at_back[2] = e.at[2] + kFibre;
+  e.mdt = on_bit_grid(cycle_time(cycle_start, kT2, t), t);
+  e.mdt_in[1] = e.mdt + kFibre;
+  e.mdt_rep[1] = repeated(e.mdt_in[1], t);
+  e.mdt_in[2] = e.mdt_rep[1] + kFibre;
+  e.mdt_rep[2] = repeated(e.mdt_in[2], t);
+  return e;
+}
+
+class Cp4Ring : public ::testing::Test {
+ protected:
+  Cp4Ring() : ring(3, kFibre) {}
+
+  void SetUp() override {
+    t = timing_16mbit();
+    // Where the first cycle will start: the MCLK edge after the REGMODE write below.
+    ring.run_for(3'333'333);
+    first = ceil_to(ring.scheduler.now(), t.mclk());
+    e = expect(first, t);
+    for (int k = 1; k <= 2; ++k) program_slave_list(k);
+    program_master_list();
+    start_master(ring.chip(0));
+  }
+
+  // Slave k: its AT at T1, the MDT's record at POS 2(k-1), an end marker.
+  void program_slave_list(int k) {
+    Chip& s = ring.chip(static_cast<std::size_t>(k));
+    program_slave(s, t, kTscyc);
+    const auto adr = static_cast<std::uint16_t>(k);
+    s.ram_write(0, 0x0030);  // COMPT0: nothing but the end marker
+    s.ram_write(1, kList);
+    transmit_header(s, kList, static_cast<std::uint16_t>(0x5000 | adr), kT1[k], 2, 0x0027);
+    words(s, 0x0024,
+          {0x8002, static_cast<std::uint16_t>(0xA100 | adr),
+           static_cast<std::uint16_t>(0xB200 | adr)});
+    const std::uint16_t mdt_time = counter_at(e.mdt_in[k], e.load[k], t) - 1;
+    receive_header(s, 0x0027, 0x18FF, mdt_time, 4, 0x0030);
+    words(s, 0x002C, {0x8002, static_cast<std::uint16_t>(2 * (k - 1)), 0, 0});
+    end_marker(s, 0x0030, kSlaveEnd);
+    enable_transmission(s);
+  }
+
+  // Master: receive headers for both ATs (ACHK + TCHK), the MDT with two records, an end
+  // marker.
+  void program_master_list() {
+    Chip& m = ring.chip(0);
+    program_master(m, t, kTscyc, 4);
+    m.ram_write(0, 0x0040);
+    m.ram_write(1, kList);
+    for (int k = 1; k <= 2; ++k) {
+      const auto at = static_cast<std::uint16_t>(kList + 9 * (k - 1));
+      const std::uint16_t time = counter_at(e.at_back[k], first, t) - 1;
+      receive_header(m, at, static_cast<std::uint16_t>(0x1800 | k), time, 2,
+                     static_cast<std::uint16_t>(at + 9));
+      words(m, at + 5, {0x8002, 0, 0, 0});
+    }
+    transmit_header(m, 0x0032, 0x50FF, kT2, 4, 0x003E);
+    words(m, 0x0036, {0x0002, 0x1111, 0x2222, 0x8002, 0x3333, 0x4444});
+    end_marker(m, 0x003E, kMasterEnd);
+    end_marker(m, 0x0040, kMasterEnd);
+    enable_transmission(m);
+  }
+
+  Time cycle(int n) const { return static_cast<Time>(n) * kTscyc * sim::kMicrosecond; }
+
+  Ring ring;
+  Timing t;
+  Time first = 0;
+  Expected e;
+};
+
+std::vector<Time> starts(const TestFibre& f) {
+  std::vector<Time> v;
+  for (const Seen& s : f.seen) v.push_back(s.start);
+  return v;
+}
+
+TEST_F(Cp4Ring, EveryTelegramStartsWhereHeadersAndDelaysSay) {
+  ring.run_for(3 * kTscyc * sim::kMicrosecond);
+  std::vector<Time> master, slave1, slave2;
+  for (int n = 0; n < 3; ++n) {
+    const Time c = cycle(n);
+    master.insert(master.end(), {e.mst + c, e.mdt + c});
+    slave1.insert(slave1.end(), {e.mst_rep[1] + c, e.at[1] + c, e.mdt_rep[1] + c});
+    slave2.insert(slave2.end(), {e.mst_rep[2] + c, e.at1_rep2 + c, e.at[2] + c, e.mdt_rep[2] + c});
+  }
+  EXPECT_EQ(starts(ring.fibre_from(0)), master);
+  EXPECT_EQ(starts(ring.fibre_from(1)), slave1);
+  EXPECT_EQ(starts(ring.fibre_from(2)), slave2);
+}
+
+TEST_F(Cp4Ring, TelegramsCarryTheirAddressesAndData) {
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  const auto& m = ring.fibre_from(0).seen;
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[1].address, 0xFF);  // facts §2: the CP3/4 MDT goes to address 255
+  EXPECT_EQ(m[1].data, (std::vector<std::uint8_t>{0x11, 0x11, 0x22, 0x22, 0x33, 0x33, 0x44, 0x44}));
+  const auto& s2 = ring.fibre_from(2).seen;
+  ASSERT_EQ(s2.size(), 4u);
+  EXPECT_EQ(s2[1].address, 1);
+  EXPECT_EQ(s2[1].data, (std::vector<std::uint8_t>{0x01, 0xA1, 0x01, 0xB2}));
+  EXPECT_EQ(s2[2].address, 2);
+  EXPECT_EQ(s2[2].data, (std::vector<std::uint8_t>{0x02, 0xA1, 0x02, 0xB2}));
+}
+
+TEST_F(Cp4Ring, DataWrittenInOneDpramArrivesInTheOthers) {
+  ring.run_for(2 * kTscyc * sim::kMicrosecond);
+  // Datasheet 4.2.2 POS: each slave takes its record from the MDT.
+  EXPECT_EQ(ring.chip(1).ram_read(0x002E), 0x1111);
+  EXPECT_EQ(ring.chip(1).ram_read(0x002F), 0x2222);
+  EXPECT_EQ(ring.chip(2).ram_read(0x002E), 0x3333);
+  EXPECT_EQ(ring.chip(2).ram_read(0x002F), 0x4444);
+  // The master stores each AT in its receive container.
+  EXPECT_EQ(ring.chip(0).ram_read(kList + 7), 0xA101);
+  EXPECT_EQ(ring.chip(0).ram_read(kList + 8), 0xB201);
+  EXPECT_EQ(ring.chip(0).ram_read(kList + 9 + 7), 0xA102);
+  EXPECT_EQ(ring.chip(0).ram_read(kList + 9 + 8), 0xB202);
+  // A new value written by the host goes out in the next cycle.
+  ring.chip(0).ram_write(0x0037, 0x5A5A);
+  ring.chip(2).ram_write(0x0025, 0x0F0F);
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  EXPECT_EQ(ring.chip(1).ram_read(0x002E), 0x5A5A);
+  EXPECT_EQ(ring.chip(0).ram_read(kList + 9 + 7), 0x0F0F);
+}
+
+TEST_F(Cp4Ring, ReceiveHeadersReportGoodTelegrams) {
+  // Datasheet 4.2.1: VAL = 1 (single buffer, data valid), RERR = 0, NERR stays 0.
+  ring.run_for(2 * kTscyc * sim::kMicrosecond);
+  for (int k = 1; k <= 2; ++k) {
+    const auto at = static_cast<std::uint16_t>(kList + 9 * (k - 1));
+    EXPECT_EQ(ring.chip(0).ram_read(at), 0x1800 | 0x0400 | k) << "AT " << k;
+    EXPECT_EQ(ring.chip(0).ram_read(at + 4), 0) << "NERR " << k;
+    EXPECT_EQ(ring.chip(static_cast<std::size_t>(k)).ram_read(0x0027), 0x18FF | 0x0400);
+  }
+}
+
+TEST_F(Cp4Ring, TelegramInterruptsAreLatched) {
+  // Register table 0x04: INT_CYCST, INT_REND, INT_TEND, INT_ENDMK; no INT_RERR.
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::uint16_t s = ring.chip(i).reg_read(kIntStat);
+    EXPECT_TRUE(s & kIntCycst) << i;
+    EXPECT_TRUE(s & kIntRend) << i;
+    EXPECT_TRUE(s & kIntTend) << i;
+    EXPECT_TRUE(s & kIntEndmk) << i;
+    EXPECT_FALSE(s & kIntRerr) << i;
+  }
+}
+
+TEST_F(Cp4Ring, TendAndEndmkComeAtTheirTimes) {
+  // INT_TEND at the end of the own telegram on the line; INT_ENDMK at the step out of
+  // TEND (datasheet 4.2.3: "time after end of MST at which the last telegram has ended").
+  const std::array<std::uint8_t, 8> data{0x11, 0x11, 0x22, 0x22, 0x33, 0x33, 0x44, 0x44};
+  const Time end = e.mdt + static_cast<Time>(line_bits(0xFF, data)) * t.bit;
+  ring.scheduler.run_until(end - 1);
+  ring.chip(0).reg_write(kIntStat, 0xFFFF);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntTend);
+  ring.scheduler.run_until(end);
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntTend);
+  const Time endmk = cycle_time(first, kMasterEnd, t);
+  ring.scheduler.run_until(endmk - 1);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+  ring.scheduler.run_until(endmk);
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+}
+
+}  // namespace
+}  // namespace sercon::chip
