@@ -35,6 +35,24 @@ TEST(TimeBase, MclkdivMakesTheMicrosecondTick) {
   EXPECT_EQ(b.time_base().tick_duration(), kMicrosecond);
 }
 
+// Delta spec 2.11.1.2: the 410B's MCLKDIV is 0EH.4-0 and MCLKST 0EH.12-8. Written 63 and
+// 33, they are 31 and 1 there: a 32-period tick, and a first tick 1 period after a load.
+TEST(TimeBase, The410BHasFiveBitDividers) {
+  ChipConfig config = config_410b();
+  config.mclk_hz = 32'000'000;
+  TimingBench b(config);
+  const Time t = b.mclk();
+  b.chip.reg_write(kClockDiv, 33 << 8 | 63);
+  EXPECT_EQ(b.time_base().tick_period(), 32);
+  b.chip.reg_write(kTcntst, 7);
+  b.run_to(10 * kMicrosecond);
+  b.cycles().mst_detected(b.now());
+  const Time first = 10 * kMicrosecond + 3 * t + 1 * t;
+  EXPECT_EQ(b.read_at(first - 1, kTcnt), 7);
+  EXPECT_EQ(b.read_at(first, kTcnt), 8);
+  EXPECT_EQ(b.read_at(first + 32 * t, kTcnt), 9);
+}
+
 // Datasheet 4.1 / register table: TCNT is a status register, writes are ignored.
 TEST(TimeBase, TcntIsReadOnly) {
   TimingBench b;
