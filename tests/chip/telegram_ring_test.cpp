@@ -221,5 +221,29 @@ TEST_F(Cp4Ring, TendAndEndmkComeAtTheirTimes) {
   EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
 }
 
+TEST_F(Cp4Ring, SlavesCountCyclesWithoutMstInNmsterr) {
+  // Datasheet 4.2: RAM word 10 NMSTERR, "error counter MST". Decision: a slave counts every
+  // cycle it free-wheels because no MST came (docs/timing.md, substitute cycle).
+  ring.run_for(2 * kTscyc * sim::kMicrosecond);
+  EXPECT_EQ(ring.chip(1).ram_read(10), 0);
+  ring.fibre_from(0).cut();
+  ring.run_for(3 * kTscyc * sim::kMicrosecond);
+  EXPECT_EQ(ring.chip(1).ram_read(10), 3);
+  EXPECT_EQ(ring.chip(2).ram_read(10), 3);
+  EXPECT_TRUE(ring.chip(1).reg_read(kIntStat) & kIntMstMiss);
+}
+
+TEST_F(Cp4Ring, MissingAtSetsRerrAtTheMaster) {
+  // Slave 2 stops sending (ENTMT = 0): the master's header for its AT gets RERR and NERR.
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  ring.chip(2).reg_write(kTpCtrl, 0);
+  ring.run_for(2 * kTscyc * sim::kMicrosecond);
+  const std::uint16_t at2 = kList + 9;
+  EXPECT_EQ(ring.chip(0).ram_read(at2) & 0x2000, 0x2000);
+  EXPECT_EQ(ring.chip(0).ram_read(at2 + 4), 2);
+  EXPECT_EQ(ring.chip(0).ram_read(kList) & 0x2000, 0);  // slave 1 still fine
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntRerr);
+}
+
 }  // namespace
 }  // namespace sercon::chip

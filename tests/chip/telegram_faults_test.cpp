@@ -1,0 +1,141 @@
+// Bad DPRAM contents (docs/telegram-processing.md, "Bad lists"): a pointer loop, a pointer
+// or container beyond the RAM, a list without end marker, containers without LASTDC. Each
+// stops that list for the rest of the cycle and counts a list fault; nothing hangs, the
+// next cycle starts afresh, and the MSTs go on.
+#include <gtest/gtest.h>
+
+#include "sercon/chip/telegram_processor.hpp"
+#include "telegram_bench.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using namespace telegram_testing;
+
+constexpr std::uint16_t kTscyc = 100;
+
+class BadList : public ::testing::Test {
+ protected:
+  explicit BadList(ChipConfig config = {}) : ring(1, 1'000'000, config) {}
+
+  void start() {
+    ring.run_for(555'555);
+    t = timing_16mbit();
+    program_master(chip(), t, kTscyc, 4);
+    enable_transmission(chip());
+    start_master(chip());
+  }
+  Chip& chip() { return ring.chip(0); }
+  TelegramProcessor& tp() { return *ring.stations[0].tp; }
+  void run_cycles(int n) { ring.run_for(n * kTscyc * sim::kMicrosecond); }
+  std::size_t list_telegrams() const {
+    std::size_t n = 0;
+    for (const Seen& s : ring.fibres[0]->seen)
+      if (s.data.size() != 1) ++n;
+    return n;
+  }
+  std::size_t msts() const {
+    std::size_t n = 0;
+    for (const Seen& s : ring.fibres[0]->seen)
+      if (s.data.size() == 1) ++n;
+    return n;
+  }
+
+  Ring ring;
+  Timing t;
+};
+
+TEST_F(BadList, PointerLoopStopsTheListOncePerCycle) {
+  words(chip(), 0, {0x040, 0x040});
+  transmit_header(chip(), 0x040, 0x5005, 20, 1, 0x040);  // PT points at itself
+  words(chip(), 0x044, {0x8001, 0x1234});
+  start();
+  run_cycles(3);
+  EXPECT_EQ(list_telegrams(), 3u);  // sent once per cycle, then the loop is found
+  EXPECT_EQ(tp().list_faults(), 3u);
+  EXPECT_EQ(msts(), 3u);
+  EXPECT_FALSE(chip().reg_read(kIntStat) & kIntEndmk);
+}
+
+TEST_F(BadList, PointerBeyondTheRamStopsTheList) {
+  words(chip(), 0, {0x7FE, 0x7FE});  // a header whose TLEN / PT words lie beyond 0x7FF
+  chip().ram_write(0x7FE, 0x5005);
+  chip().ram_write(0x7FF, 20);
+  start();
+  run_cycles(2);
+  EXPECT_EQ(list_telegrams(), 0u);
+  EXPECT_EQ(tp().list_faults(), 2u);
+  EXPECT_EQ(msts(), 2u);
+}
+
+TEST_F(BadList, ContainerBeyondTheRamSendsNothing) {
+  words(chip(), 0, {0x7F0, 0x7F0});
+  transmit_header(chip(), 0x7F0, 0x5005, 20, 100, 0x7F0);
+  chip().ram_write(0x7F4, 0x8000 | 100);  // 100 data words from 0x7F5: beyond the RAM
+  start();
+  run_cycles(2);
+  EXPECT_EQ(list_telegrams(), 0u);
+  EXPECT_EQ(tp().list_faults(), 2u);
+}
+
+TEST_F(BadList, KindTenIsNoEndMarker) {
+  words(chip(), 0, {0x040, 0x040});
+  transmit_header(chip(), 0x040, 0x5005, 20, 1, 0x050);
+  words(chip(), 0x044, {0x8001, 0x1234});
+  chip().ram_write(0x050, 0x8000);  // bits 15..14 = 10: neither header nor end marker
+  start();
+  run_cycles(2);
+  EXPECT_EQ(list_telegrams(), 2u);
+  EXPECT_EQ(tp().list_faults(), 2u);
+  EXPECT_FALSE(chip().reg_read(kIntStat) & kIntEndmk);
+}
+
+TEST_F(BadList, TransmitContainersWithoutLastdcRunIntoTheRamEnd) {
+  words(chip(), 0, {0x040, 0x040});
+  transmit_header(chip(), 0x040, 0x5005, 20, 1, 0x050);
+  // Containers of LEN 0 without LASTDC: one control word each, up to the end of the RAM.
+  start();
+  run_cycles(1);
+  EXPECT_EQ(list_telegrams(), 0u);
+  EXPECT_EQ(tp().list_faults(), 1u);
+}
+
+TEST_F(BadList, UnprogrammedListWaitsHarmlessly) {
+  // All-zero RAM: COMPT1 = 0 names word 0, a receive header (kind 00) with TCHK = 0 that
+  // waits for a telegram all cycle. Only MSTs come back, and they are no list telegrams.
+  start();
+  run_cycles(3);
+  EXPECT_EQ(list_telegrams(), 0u);
+  EXPECT_EQ(tp().list_faults(), 0u);
+  EXPECT_EQ(msts(), 3u);
+}
+
+class BadList410B : public BadList {
+ protected:
+  BadList410B() : BadList(config()) {}
+  static ChipConfig config() {
+    ChipConfig c;
+    c.variant = Variant::Sercon410B;
+    c.sbaud16 = true;
+    return c;
+  }
+};
+
+TEST_F(BadList410B, PointerIntoTheMissingUpperKilowordStopsTheList) {
+  // Delta spec 2.5: the 410B has 1024 words; PT has 11 bits (datasheet 4.2.1), so 0x400
+  // and above point beyond its RAM.
+  words(chip(), 0, {0x040, 0x040});
+  transmit_header(chip(), 0x040, 0x5005, 100, 1, 0x400);  // after the 24 µs MST
+  words(chip(), 0x044, {0x8001, 0x1234});
+  ring.run_for(555'555);
+  t = timing_2mbit();
+  program_master(chip(), t, kTscyc * 10, 4);
+  enable_transmission(chip());
+  start_master(chip());
+  ring.run_for(2 * kTscyc * 10 * sim::kMicrosecond);
+  EXPECT_EQ(list_telegrams(), 2u);
+  EXPECT_EQ(tp().list_faults(), 2u);
+}
+
+}  // namespace
+}  // namespace sercon::chip
