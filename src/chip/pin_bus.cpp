@@ -83,7 +83,7 @@ void PinBus::on_strobe_pin() {
   driven_ = last_.driven;
   for (unsigned bit = 0; bit < 16; ++bit) {
     if (driven_ & (1u << bit)) {
-      chip_.set_output(data_pin(bit), sim::level_of((last_.data >> bit & 1u) != 0));
+      chip_.set_output(data_pin(bit), sim::level_of(((unsigned{last_.data} >> bit) & 1u) != 0));
     }
   }
 }
@@ -114,7 +114,7 @@ void PinBus::drive_address_lines() {
   for (unsigned bit = 0; bit < 16; ++bit) {
     const Pin p = address_pin(bit);
     if (out) {
-      chip_.set_output(p, sim::level_of((latch_ >> bit & 1u) != 0));
+      chip_.set_output(p, sim::level_of(((unsigned{latch_} >> bit) & 1u) != 0));
     } else if (chip_.drives(p)) {
       chip_.set_output(p, sim::Level::HighZ);
     }

@@ -18,10 +18,10 @@ class PinBusTest : public ::testing::Test {
   Chip& chip() { return *bench.chip; }
   void set(Pin p, bool high) { chip().drive(p, sim::level_of(high)); }
   void address(std::uint16_t a) {
-    for (unsigned bit = 0; bit < 16; ++bit) set(address_pin(bit), (a >> bit) & 1u);
+    for (unsigned bit = 0; bit < 16; ++bit) set(address_pin(bit), ((unsigned{a} >> bit) & 1u) != 0);
   }
   void data(std::uint16_t d) {
-    for (unsigned bit = 0; bit < 16; ++bit) set(data_pin(bit), (d >> bit) & 1u);
+    for (unsigned bit = 0; bit < 16; ++bit) set(data_pin(bit), ((unsigned{d} >> bit) & 1u) != 0);
   }
   void float_data() {
     for (unsigned bit = 0; bit < 16; ++bit) chip().drive(data_pin(bit), Level::HighZ);

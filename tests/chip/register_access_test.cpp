@@ -142,8 +142,8 @@ std::string name_of(const ::testing::TestParamInfo<std::tuple<Variant, std::uint
   const std::uint8_t a = std::get<1>(info.param);
   std::string name(to_string(std::get<0>(info.param)));
   name += "_0x";
-  name += kHex[a >> 4];
-  name += kHex[a & 0xF];
+  name += kHex[unsigned{a} >> 4];
+  name += kHex[unsigned{a} & 0xFu];
   for (char c : register_info(a).name) name += c == '_' ? 'x' : c;
   return name;
 }

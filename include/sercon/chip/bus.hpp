@@ -63,8 +63,8 @@ struct ByteLanes {
   }
   // The word's bits as they appear on D15-0 (bits of unused lanes are 0).
   constexpr std::uint16_t to_data(std::uint16_t word) const {
-    const unsigned hi = word >> 8u;
-    const unsigned lo = word & 0xFFu;
+    const unsigned hi = unsigned{word} >> 8u;
+    const unsigned lo = unsigned{word} & 0xFFu;
     unsigned d = 0;
     if (low_lane) d |= low_lane_is_word_high ? hi : lo;
     if (high_lane) d |= (high_lane_is_word_high ? hi : lo) << 8u;
@@ -72,8 +72,8 @@ struct ByteLanes {
   }
   // D15-0 as word bits (bits outside word_mask() are 0).
   constexpr std::uint16_t to_word(std::uint16_t data) const {
-    const unsigned dlo = data & 0xFFu;
-    const unsigned dhi = data >> 8u;
+    const unsigned dlo = unsigned{data} & 0xFFu;
+    const unsigned dhi = unsigned{data} >> 8u;
     unsigned w = 0;
     if (low_lane) w |= low_lane_is_word_high ? dlo << 8u : dlo;
     if (high_lane) w |= high_lane_is_word_high ? dhi << 8u : dhi;
@@ -82,7 +82,7 @@ struct ByteLanes {
 };
 
 constexpr ByteLanes byte_lanes(bool bus16, bool bytedir, std::uint16_t address, bool bhen) {
-  const bool odd = (address & 1u) != 0;
+  const bool odd = (unsigned{address} & 1u) != 0;
   ByteLanes lanes;
   if (bus16) {
     lanes.low_lane = !odd;
@@ -99,10 +99,10 @@ constexpr ByteLanes byte_lanes(bool bus16, bool bytedir, std::uint16_t address, 
 // Word addresses the pins reach: A6-1 for registers (0x00..0x3F), A11-1 (816) or A10-1
 // (410B) for RAM; higher address lines are not connected to the block.
 constexpr std::uint16_t register_word(std::uint16_t address) {
-  return static_cast<std::uint16_t>((address >> 1u) & 0x3Fu);
+  return static_cast<std::uint16_t>((unsigned{address} >> 1u) & 0x3Fu);
 }
 constexpr std::uint16_t ram_word(std::uint16_t address, std::uint16_t ram_words) {
-  return static_cast<std::uint16_t>((address >> 1u) & (ram_words - 1u));
+  return static_cast<std::uint16_t>((unsigned{address} >> 1u) & (ram_words - 1u));
 }
 
 }  // namespace sercon::chip
