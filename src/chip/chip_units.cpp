@@ -7,6 +7,7 @@
 #include "sercon/chip/interrupts.hpp"
 #include "sercon/chip/nand_tree.hpp"
 #include "sercon/chip/pin_bus.hpp"
+#include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/time_base.hpp"
 #include "sercon/chip/watchdog.hpp"
 
@@ -22,6 +23,7 @@ void Chip::build_units() {
   add_unit<Watchdog>();
   add_unit<DivClk>();
   add_unit<ConClk>();
+  add_unit<SerialUnit>();  // serial interface (docs/serial-and-ring.md)
 }
 
 }  // namespace sercon::chip

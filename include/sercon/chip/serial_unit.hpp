@@ -13,6 +13,7 @@
 
 #include "sercon/chip/chip_unit.hpp"
 #include "sercon/chip/line.hpp"
+#include "sercon/chip/serial_unit_fields.hpp"
 #include "sercon/sim/time.hpp"
 #include "sercon/wire/decoder.hpp"
 
@@ -23,6 +24,7 @@ class SerialTransmitter;
 class SerialReceiver;
 class SerialRepeater;
 class LineMonitor;
+class TxdOutputs;
 
 // A telegram the receiver has decoded (or cut off by an error).
 struct ReceivedTelegram {
@@ -78,6 +80,9 @@ class SerialUnit : public ChipUnit {
   void on_telegram(TelegramHandler handler);
 
   // --- ring side -------------------------------------------------------------------------
+  // When the repeater passes on a change that reaches RxD at `arrival`: kRepeaterDelayBits
+  // bit times later, rounded up to the SCLK grid.
+  sim::Time repeated_at(sim::Time arrival) const;
   LineListener& rxd();  // fibres / buses deliver here
   // TxDn (n = 1..6) -> a fibre / bus input. The listener is told the present condition at
   // once. Replaces an earlier listener on that pin. std::out_of_range for other n.
@@ -90,17 +95,31 @@ class SerialUnit : public ChipUnit {
 
   // The parts, for each other (src/chip/serial_unit_*.cpp).
   Chip& chip() { return chip_; }
+  const Chip& chip() const { return chip_; }
+  const SerialFields& fields() const { return fields_; }
+  bool running() const { return running_; }  // released from reset
   SerialTransmitter& transmitter() { return *transmitter_; }
   SerialReceiver& receiver() { return *receiver_; }
   SerialRepeater& repeater() { return *repeater_; }
   LineMonitor& monitor() { return *monitor_; }
+  TxdOutputs& outputs() { return *outputs_; }
 
  private:
+  sim::Time compute_bit_period() const;
+  void on_register_change(std::uint8_t address);
+  std::uint16_t control_bits() const;  // 0x02 without its status bits
+
   Chip& chip_;
+  SerialFields fields_;
+  bool running_ = false;
+  sim::Time bit_period_ = 0;  // cached: Chip::serial_clocks() looks fields up by name
+  bool repon_ = false, poltxd_ = false;
+  std::uint16_t control_ = 0;
+  std::unique_ptr<TxdOutputs> outputs_;
   std::unique_ptr<SerialTransmitter> transmitter_;
-  std::unique_ptr<LineMonitor> monitor_;
   std::unique_ptr<SerialReceiver> receiver_;
   std::unique_ptr<SerialRepeater> repeater_;
+  std::unique_ptr<LineMonitor> monitor_;
 };
 
 }  // namespace sercon::chip

@@ -1,0 +1,41 @@
+// What the receiver's RxD carries from one change to the next: a condition, or a telegram
+// burst followed by idle fill at the burst's rate (line contract: the line returns to Idle
+// at burst.end() unless another change comes). The line monitor counts its edges.
+#pragma once
+
+#include <cstdint>
+
+#include "sercon/chip/line.hpp"
+#include "sercon/chip/line_decode_memo.hpp"
+#include "sercon/sim/time.hpp"
+
+namespace sercon::chip {
+
+struct RxdSegment {
+  bool is_burst = false;
+  LineCondition condition = LineCondition::Dark;  // when !is_burst
+  sim::Time since = 0;                            // the condition's or the burst's start
+  sim::Time period = 0;                           // bit period; 0 for Dark and Light
+  SharedBits bits;                                // when is_burst
+
+  static RxdSegment of(sim::Time at, LineCondition condition, sim::Time period);
+  static RxdSegment of(const LineBurst& burst);
+
+  LineBurst burst() const { return LineBurst{since, period, bits}; }
+  sim::Time burst_end() const;  // since + bits * period (bursts only)
+  bool has_edges() const {
+    return is_burst || condition == LineCondition::Idle || condition == LineCondition::ZeroBits;
+  }
+  // The condition a repeater passes on when it joins at `t`: a burst counts as the idle
+  // fill it is followed by (a fragment without its opening flag decodes to nothing).
+  LineCondition condition_at_join() const { return is_burst ? LineCondition::Idle : condition; }
+};
+
+// Edges in [since, t): Idle has one every 8 bit times, ZeroBits one every bit time, both
+// beginning with an edge at `since`; a burst has its bits' edges, then its trailing fill.
+std::uint64_t edges_before(const RxdSegment& segment, sim::Time t);
+
+// Time of the n-th (n >= 1) edge; the segment must have edges.
+sim::Time nth_edge_time(const RxdSegment& segment, std::uint64_t n);
+
+}  // namespace sercon::chip

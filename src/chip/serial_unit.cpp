@@ -1,0 +1,137 @@
+#include "sercon/chip/serial_unit.hpp"
+
+#include "sercon/chip/chip.hpp"
+#include "sercon/chip/line_decode_memo.hpp"
+#include "sercon/chip/line_length.hpp"
+#include "sercon/chip/serial_unit_monitor.hpp"
+#include "sercon/chip/serial_unit_outputs.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
+#include "sercon/chip/serial_unit_repeater.hpp"
+#include "sercon/chip/serial_unit_transmitter.hpp"
+
+namespace sercon::chip {
+
+SerialUnit::SerialUnit(Chip& chip)
+    : chip_(chip),
+      fields_(chip.variant()),
+      outputs_(std::make_unique<TxdOutputs>(*this)),
+      transmitter_(std::make_unique<SerialTransmitter>(*this)),
+      receiver_(std::make_unique<SerialReceiver>(*this)),
+      repeater_(std::make_unique<SerialRepeater>(*this)),
+      monitor_(std::make_unique<LineMonitor>(*this)) {
+  chip.regs().on_change([this](std::uint8_t address) { on_register_change(address); });
+  // TM0/TM1 choose the test generator unless TMODE2 overrides them (delta spec 2.3.3).
+  for (const Pin p : {Pin::TM0, Pin::TM1}) {
+    chip.pin(p).watch([this](sim::Level) {
+      if (running_) outputs_->refresh();
+    });
+  }
+}
+
+SerialUnit::~SerialUnit() = default;
+
+void SerialUnit::reset(ResetCause) {
+  running_ = false;
+  bit_period_ = 0;
+  transmitter_->reset();
+  receiver_->reset();
+  monitor_->reset();
+  outputs_->refresh();  // TxD1-6 high impedance: listeners see Dark
+  repeater_->reset();
+}
+
+void SerialUnit::release() {
+  running_ = true;
+  bit_period_ = compute_bit_period();
+  repon_ = fields_.repon.on(chip_.regs());
+  poltxd_ = fields_.poltxd.on(chip_.regs());
+  control_ = control_bits();
+  transmitter_->release();
+  repeater_->release();
+  outputs_->refresh();
+  monitor_->release();
+}
+
+sim::Time SerialUnit::compute_bit_period() const {
+  const std::int64_t hz = chip_.serial_clocks().bit_rate_hz;
+  return hz > 0 ? sim::period_of_hz(hz) : 0;
+}
+
+std::uint16_t SerialUnit::control_bits() const {
+  const auto status =
+      static_cast<std::uint16_t>(fields_.rdist.mask | fields_.fibbr.mask | fields_.recact.mask);
+  return static_cast<std::uint16_t>(chip_.regs().value(fields_.txoe.address) & ~status);
+}
+
+// Status bits this unit sets itself (RDIST, FIBBR, RECACT) also land here: they change
+// nothing and return early, so a telegram costs no output refresh.
+void SerialUnit::on_register_change(std::uint8_t address) {
+  if (!running_) return;
+  const RegisterFile& regs = chip_.regs();
+  if (address == fields_.repon.address) {
+    const sim::Time period = compute_bit_period();
+    const bool repon = fields_.repon.on(regs);
+    const bool poltxd = fields_.poltxd.on(regs);
+    if (period == bit_period_ && repon == repon_ && poltxd == poltxd_) return;
+    const bool rate_changed = period != bit_period_;
+    bit_period_ = period;
+    repon_ = repon;
+    poltxd_ = poltxd;
+    repeater_->refresh();
+    outputs_->refresh();
+    if (rate_changed) monitor_->refresh_limits();
+  } else if (address == fields_.txoe.address) {
+    const std::uint16_t control = control_bits();
+    if (control == control_) return;
+    control_ = control;
+    outputs_->refresh();
+    monitor_->refresh_line_error();
+  } else if (address == fields_.portsel.address) {
+    outputs_->refresh();
+  } else if (address == fields_.rdistlim.address) {
+    monitor_->refresh_limits();
+  }
+}
+
+sim::Time SerialUnit::bit_period() const { return bit_period_; }
+
+sim::Time SerialUnit::next_bit_edge(sim::Time t) const {
+  if (bit_period_ == 0 || t <= 0) return t;
+  return (t + bit_period_ - 1) / bit_period_ * bit_period_;
+}
+
+sim::Time SerialUnit::send(sim::Time start, std::uint8_t address,
+                           std::span<const std::uint8_t> data) {
+  return transmitter_->send(start, address, data);
+}
+
+sim::Time SerialUnit::burst_duration(std::uint8_t address,
+                                     std::span<const std::uint8_t> data) const {
+  return static_cast<sim::Time>(telegram_line_bits(address, data)) * bit_period_;
+}
+
+sim::Time SerialUnit::transmit_free_at() const { return transmitter_->free_at(); }
+
+void SerialUnit::on_telegram_start(TelegramStartHandler handler) {
+  receiver_->on_start(std::move(handler));
+}
+
+void SerialUnit::on_telegram(TelegramHandler handler) {
+  receiver_->on_telegram(std::move(handler));
+}
+
+sim::Time SerialUnit::repeated_at(sim::Time arrival) const {
+  return repeater_->forward_time(arrival);
+}
+
+LineListener& SerialUnit::rxd() { return *receiver_; }
+
+void SerialUnit::connect_txd(unsigned pin, LineListener& listener) {
+  outputs_->connect(pin, listener);
+}
+
+void SerialUnit::disconnect_txd(unsigned pin) { outputs_->disconnect(pin); }
+
+std::size_t SerialUnit::decode_count() { return burst_decode_count(); }
+
+}  // namespace sercon::chip

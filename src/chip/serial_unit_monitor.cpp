@@ -1,0 +1,113 @@
+#include "sercon/chip/serial_unit_monitor.hpp"
+
+#include <algorithm>
+
+#include "sercon/chip/chip.hpp"
+#include "sercon/chip/interrupts.hpp"
+#include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/serial_unit_fields.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
+
+namespace sercon::chip {
+
+void LineMonitor::cancel() {
+  unit_.chip().scheduler().cancel(rdist_event_);
+  unit_.chip().scheduler().cancel(fibbr_event_);
+}
+
+void LineMonitor::reset() {
+  cancel();
+  distorted_ = 0;
+  rdist_ = fibbr_ = false;  // the register reset cleared the bits, the chip's reset L_ERRN
+}
+
+void LineMonitor::release() {
+  segment_ = unit_.receiver().input();
+  // The monitor's counters start at release: darkness before it does not count.
+  if (!segment_.has_edges()) segment_.since = unit_.chip().scheduler().now();
+  period_ = unit_.bit_period();
+  evaluate();
+  refresh_line_error();
+}
+
+void LineMonitor::input_changed(const RxdSegment& before, const RxdSegment& after) {
+  const sim::Time now = unit_.chip().scheduler().now();
+  cancel();
+  if (before.has_edges() && before.period != period_) distorted_ += edges_before(before, now);
+  segment_ = after;
+  evaluate();
+}
+
+void LineMonitor::refresh_limits() {
+  const sim::Time now = unit_.chip().scheduler().now();
+  cancel();
+  const sim::Time period = unit_.bit_period();
+  if (period != period_) {
+    // A new rate: judge from now on what RxD carries now (a telegram counts as its fill).
+    if (segment_.has_edges() && segment_.period != period_) {
+      distorted_ += edges_before(segment_, now);
+    }
+    if (segment_.is_burst) segment_ = RxdSegment::of(now, LineCondition::Idle, segment_.period);
+    if (segment_.has_edges()) segment_.since = now;
+    period_ = period;
+  }
+  evaluate();
+}
+
+void LineMonitor::evaluate() {
+  const sim::Time period = period_;
+  if (!unit_.running() || period == 0) return;
+  sim::Scheduler& s = unit_.chip().scheduler();
+  const RegisterFile& regs = unit_.chip().regs();
+  const SerialFields& f = unit_.fields();
+  const sim::Time now = s.now();
+  if (!segment_.has_edges()) {
+    if (fibbr_) return;
+    const auto bits = std::max(f.fibbrtim.get(regs), kMinFibbrBits);
+    const sim::Time due = segment_.since + static_cast<sim::Time>(bits) * period;
+    if (due <= now) return set_fibbr(true);
+    fibbr_event_ = s.at(due, [this] { set_fibbr(true); });
+    return;
+  }
+  set_fibbr(false);
+  if (segment_.period == period) {
+    distorted_ = 0;
+    return set_rdist(false);
+  }
+  const std::uint64_t limit = std::max<std::uint16_t>(f.rdistlim.get(regs), 1);
+  if (distorted_ >= limit) return set_rdist(true);
+  if (rdist_) return;
+  const sim::Time due = nth_edge_time(segment_, limit - distorted_);
+  if (due <= now) return set_rdist(true);
+  rdist_event_ = s.at(due, [this] { set_rdist(true); });
+}
+
+void LineMonitor::set_rdist(bool on) {
+  if (on == rdist_) return;
+  rdist_ = on;
+  unit_.fields().rdist.set(unit_.chip().regs(), on);
+  if (on) {
+    if (auto* irq = unit_.chip().unit<Interrupts>()) irq->raise(Irq::Rdist);
+  }
+  refresh_line_error();
+}
+
+void LineMonitor::set_fibbr(bool on) {
+  if (on == fibbr_) return;
+  fibbr_ = on;
+  unit_.fields().fibbr.set(unit_.chip().regs(), on);
+  if (on) {
+    if (auto* irq = unit_.chip().unit<Interrupts>()) irq->raise(Irq::Fibbr);
+  }
+  refresh_line_error();
+}
+
+void LineMonitor::refresh_line_error() {
+  if (!unit_.running()) return;
+  const RegisterFile& regs = unit_.chip().regs();
+  const SerialFields& f = unit_.fields();
+  const bool error = (rdist_ && f.ledist.on(regs)) || (fibbr_ && f.lemiss.on(regs));
+  unit_.chip().set_output(Pin::L_ERRN, !error);
+}
+
+}  // namespace sercon::chip

@@ -1,0 +1,142 @@
+// A chip with its serial unit on a bench: a recorder on TxD1 (the fibre's view), a log of
+// pin edges, and helpers that build telegram bursts the way a transmitter upstream would.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "chip_fixture.hpp"
+#include "sercon/chip/line.hpp"
+#include "sercon/chip/serial_unit.hpp"
+#include "sercon/wire/encoder.hpp"
+
+namespace sercon::chip::testing {
+
+inline constexpr std::uint8_t kSerMode = 0x01;
+inline constexpr std::uint8_t kSerCtrl = 0x02;
+inline constexpr std::uint8_t kIntStat = 0x04;
+inline constexpr std::uint8_t kTxPort = 0x0B;
+inline constexpr std::uint8_t kLineMon = 0x0D;
+
+// 0x01
+inline constexpr std::uint16_t kRepon = 1u << 3;
+inline constexpr std::uint16_t kPoltxd = 1u << 9;
+// 0x02
+inline constexpr std::uint16_t kTxoe1 = 1u << 0;
+inline constexpr std::uint16_t kTxLight = 1u << 6;
+inline constexpr std::uint16_t kLedist = 1u << 7;
+inline constexpr std::uint16_t kLemiss = 1u << 8;
+inline constexpr std::uint16_t kTmode0 = 1u << 9;
+inline constexpr std::uint16_t kTmode1 = 1u << 10;
+inline constexpr std::uint16_t kTmode2 = 1u << 11;
+inline constexpr std::uint16_t kRdist = 1u << 12;
+inline constexpr std::uint16_t kFibbr = 1u << 13;
+inline constexpr std::uint16_t kRecact = 1u << 14;
+// 0x04
+inline constexpr std::uint16_t kIntRdist = 1u << 0;
+inline constexpr std::uint16_t kIntFibbr = 1u << 1;
+
+// Everything a line listener is told, with the scheduler's time of the call.
+class LineRecorder : public LineListener {
+ public:
+  struct Event {
+    sim::Time now = 0;  // when the call came
+    bool burst = false;
+    LineCondition condition = LineCondition::Dark;
+    sim::Time at = 0;  // condition time or burst start
+    sim::Time period = 0;
+    std::shared_ptr<const wire::LineBits> bits;
+  };
+
+  explicit LineRecorder(const sim::Scheduler& scheduler) : scheduler_(scheduler) {}
+
+  void line_condition(sim::Time at, LineCondition condition, sim::Time period) override {
+    events.push_back(Event{scheduler_.now(), false, condition, at, period, nullptr});
+  }
+  void line_burst(const LineBurst& b) override {
+    events.push_back(
+        Event{scheduler_.now(), true, LineCondition::Idle, b.start, b.bit_period, b.bits});
+  }
+
+  std::vector<Event> bursts() const {
+    std::vector<Event> out;
+    for (const Event& e : events) {
+      if (e.burst) out.push_back(e);
+    }
+    return out;
+  }
+  std::vector<Event> conditions() const {
+    std::vector<Event> out;
+    for (const Event& e : events) {
+      if (!e.burst) out.push_back(e);
+    }
+    return out;
+  }
+  const Event& last() const { return events.back(); }
+
+  std::vector<Event> events;
+
+ private:
+  const sim::Scheduler& scheduler_;
+};
+
+// Every level change of one pin, with its time.
+struct PinEdges {
+  PinEdges(ChipOnBench& bench, Pin p) {
+    bench.chip->pin(p).watch(
+        [this, &bench](sim::Level l) { edges.emplace_back(bench.scheduler.now(), l); });
+  }
+  std::vector<std::pair<sim::Time, sim::Level>> edges;
+};
+
+// Chip configs for the four bit rates (delta spec 2.3.1 table, SCLK = 64 MHz).
+inline ChipConfig config_at_mbit(int mbit, std::int64_t mclk_hz = 32'000'000) {
+  ChipConfig c;
+  c.mclk_hz = mclk_hz;
+  c.sbaud16 = mbit <= 4;             // compatible mode: 2 / 4 Mbit/s
+  c.sbaud = mbit == 2 || mbit == 8;  // the slower of each pair
+  return c;
+}
+
+inline sim::Time bit_period_of(int mbit) { return sim::kSecond / (mbit * 1'000'000LL); }
+
+// The line bits of one telegram as an upstream transmitter would send them.
+inline std::shared_ptr<const wire::LineBits> telegram_bits(std::uint8_t address,
+                                                           std::vector<std::uint8_t> data,
+                                                           bool level_before = true) {
+  wire::LineEncoder encoder(level_before);
+  encoder.telegram(address, data);
+  return std::make_shared<const wire::LineBits>(encoder.take());
+}
+
+struct SerialBench : ChipOnBench {
+  explicit SerialBench(const ChipConfig& config = {})
+      : ChipOnBench(config), unit(*chip->unit<SerialUnit>()), txd1(scheduler) {
+    set_sermode_bits(kRepon, false);  // a lone chip: own telegrams only (repeater tests
+                                      // switch it on)
+    unit.connect_txd(1, txd1);
+  }
+  // TxD1 driven, optical transmitter on (a driver's 0x007F without the other outputs).
+  void light_up(std::uint16_t extra = 0) {
+    chip->reg_write(kSerCtrl, static_cast<std::uint16_t>(kTxoe1 | kTxLight | extra));
+  }
+  void set_sermode_bits(std::uint16_t bits, bool on) {
+    const std::uint16_t v = chip->reg_read(kSerMode);
+    chip->reg_write(kSerMode, static_cast<std::uint16_t>(on ? v | bits : v & ~bits));
+  }
+  sim::Time period() const { return unit.bit_period(); }
+  // First MCLK edge at or after end + 5.5 bit + 3 MCLK (facts §5, t_start).
+  sim::Time detection(sim::Time end) const {
+    const sim::Time t = end + 11 * period() / 2 + 3 * chip->mclk_period();
+    const sim::Time m = chip->mclk_period();
+    return (t + m - 1) / m * m;
+  }
+  void run_to(sim::Time t) { scheduler.run_until(t); }
+
+  SerialUnit& unit;
+  LineRecorder txd1;
+};
+
+}  // namespace sercon::chip::testing

@@ -1,0 +1,289 @@
+// The receiver: bursts decoded into the telegram processor's events at exact times
+// (serial_unit.hpp: start event once the address byte is in, telegram event at the first
+// MCLK edge at or after end + 5.5 bit + 3 MCLK, facts §5 t_start), RECACTN (datasheet
+// Table 1: "Indicates that the serial receiver is receiving a telegram"), cuts, memoized
+// decoding, and the LineListener contract (line.hpp).
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "serial_bench.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using sim::Level;
+using sim::Time;
+using testing::bit_period_of;
+using testing::config_at_mbit;
+using testing::kRecact;
+using testing::kSerCtrl;
+using testing::PinEdges;
+using testing::SerialBench;
+using testing::telegram_bits;
+
+struct Started {
+  Time now, start;
+  std::uint8_t address;
+};
+struct Got {
+  Time now, start, end, detected;
+  wire::DecodedFrame frame;
+};
+
+// Records the receiver's events.
+struct Events {
+  explicit Events(SerialBench& b) {
+    b.unit.on_telegram_start([this, &b](Time start, std::uint8_t address) {
+      started.push_back({b.scheduler.now(), start, address});
+    });
+    b.unit.on_telegram([this, &b](const ReceivedTelegram& t) {
+      got.push_back({b.scheduler.now(), t.start, t.end, t.detected, t.frame});
+    });
+  }
+  std::vector<Started> started;
+  std::vector<Got> got;
+};
+
+const std::vector<std::uint8_t> kData = {0x01, 0x02, 0xFF, 0xFF, 0x7E};
+
+// Stuffed 0s that come inside the address byte (after bits 0..6, LSB first).
+int stuffed_in_address(std::uint8_t a) {
+  int ones = 0, stuffed = 0;
+  for (int i = 0; i < 7; ++i) {
+    ones = ((a >> i) & 1) != 0 ? ones + 1 : 0;
+    if (ones == 5) {
+      ++stuffed;
+      ones = 0;
+    }
+  }
+  return stuffed;
+}
+
+struct RateAndMclk {
+  int mbit;
+  std::int64_t mclk_hz;
+};
+
+class ReceiveAt : public ::testing::TestWithParam<RateAndMclk> {};
+
+// Facts §5: start detection delay t_start = 5.5 t_bit + 3.5 / f_MCLK on average: modelled
+// as the first MCLK edge at or after end + 5.5 bit + 3 MCLK (serial_unit.hpp); the start
+// event uses the same pipeline after the address byte's last bit.
+TEST_P(ReceiveAt, EventsComeAtTheirExactTimes) {
+  const auto [mbit, mclk] = GetParam();
+  SerialBench b(config_at_mbit(mbit, mclk));
+  Events ev(b);
+  PinEdges recactn(b, Pin::RECACTN);
+  const Time t = bit_period_of(mbit);
+  const Time start = 1000 * t + 7;  // off every grid: the far end of a fibre
+  for (const std::uint8_t address : {std::uint8_t{0x1F}, std::uint8_t{0x3F}, std::uint8_t{0xFF}}) {
+    ev.started.clear();
+    ev.got.clear();
+    recactn.edges.clear();
+    const Time at = start + (address == 0x1F ? 0 : address == 0x3F ? 10'000 : 20'000) * t;
+    const auto bits = telegram_bits(address, kData);
+    b.run_to(at);
+    b.unit.rxd().line_burst(LineBurst{at, t, bits});
+    const Time end = at + static_cast<Time>(bits->size()) * t;
+    b.run_to(end + 100 * t);
+    const Time address_in = at + (16 + stuffed_in_address(address)) * t;
+    ASSERT_EQ(ev.started.size(), 1u);
+    EXPECT_EQ(ev.started[0].address, address);
+    EXPECT_EQ(ev.started[0].start, at);
+    EXPECT_EQ(ev.started[0].now, b.detection(address_in));
+    ASSERT_EQ(ev.got.size(), 1u);
+    EXPECT_TRUE(ev.got[0].frame.ok());
+    EXPECT_EQ(ev.got[0].frame.address, address);
+    EXPECT_EQ(ev.got[0].frame.data, kData);
+    EXPECT_EQ(ev.got[0].start, at);
+    EXPECT_EQ(ev.got[0].end, end);
+    EXPECT_EQ(ev.got[0].detected, b.detection(end));
+    EXPECT_EQ(ev.got[0].now, ev.got[0].detected);
+    EXPECT_EQ(ev.got[0].detected % b.chip->mclk_period(), 0);
+    const std::vector<std::pair<Time, Level>> expected = {{at, Level::Low}, {end, Level::High}};
+    EXPECT_EQ(recactn.edges, expected);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Rates, ReceiveAt,
+                         ::testing::Values(RateAndMclk{2, 16'000'000}, RateAndMclk{4, 32'000'000},
+                                           RateAndMclk{8, 40'000'000}, RateAndMclk{16, 32'000'000},
+                                           RateAndMclk{16, 64'000'000}),
+                         [](const auto& p) {
+                           return std::to_string(p.param.mbit) + "Mbit_" +
+                                  std::to_string(p.param.mclk_hz / 1'000'000) + "MHz";
+                         });
+
+// Register table RECACT: "Receiver is inside a telegram (RECACTN pin low)".
+TEST(Receiver, RecactBitFollowsThePin) {
+  SerialBench b;
+  const Time t = b.period();
+  const auto bits = telegram_bits(0x05, kData);
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  b.run_to(20 * t);
+  EXPECT_TRUE(b.chip->reg_read(kSerCtrl) & kRecact);
+  EXPECT_EQ(b.chip->pin(Pin::RECACTN).level(), Level::Low);
+  b.run_to(static_cast<Time>(bits->size()) * t);
+  EXPECT_FALSE(b.chip->reg_read(kSerCtrl) & kRecact);
+  EXPECT_EQ(b.chip->pin(Pin::RECACTN).level(), Level::High);
+}
+
+// Line contract: a change before burst.end() cuts the burst; the receiver reports the
+// frame open at the cut as an error that ends at the cut (serial_unit.hpp, end "or where
+// the error cut it"), and RECACTN goes high there.
+TEST(Receiver, ACutTelegramIsReportedAsAnErrorEndingAtTheCut) {
+  SerialBench b;
+  Events ev(b);
+  const Time t = b.period();
+  const auto bits = telegram_bits(0x05, kData);
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  b.run_to(40 * t + 3);
+  b.unit.rxd().line_condition(40 * t + 3, LineCondition::Dark, 0);
+  EXPECT_EQ(b.chip->pin(Pin::RECACTN).level(), Level::High);
+  b.run_to(200 * t);
+  ASSERT_EQ(ev.got.size(), 1u);
+  EXPECT_FALSE(ev.got[0].frame.ok());
+  EXPECT_EQ(ev.got[0].frame.error, wire::FrameError::Abort);
+  EXPECT_EQ(ev.got[0].end, 40 * t + 3);
+  EXPECT_EQ(ev.got[0].detected, b.detection(40 * t + 3));
+  ASSERT_EQ(ev.started.size(), 1u);  // the address had come in before the cut
+}
+
+// A new telegram that cuts the one before (the repeater inserting its own): the first is
+// an error, the second decodes whole; RECACTN stays low across the seam.
+TEST(Receiver, ABurstCutByTheNextOne) {
+  SerialBench b;
+  Events ev(b);
+  PinEdges recactn(b, Pin::RECACTN);
+  const Time t = b.period();
+  const auto first = telegram_bits(0x05, kData);
+  const auto second = telegram_bits(0x06, kData);
+  b.unit.rxd().line_burst(LineBurst{0, t, first});
+  b.run_to(30 * t);
+  b.unit.rxd().line_burst(LineBurst{30 * t, t, second});
+  const Time end2 = 30 * t + static_cast<Time>(second->size()) * t;
+  b.run_to(end2 + 100 * t);
+  ASSERT_EQ(ev.got.size(), 2u);
+  EXPECT_FALSE(ev.got[0].frame.ok());
+  EXPECT_EQ(ev.got[0].end, 30 * t);
+  EXPECT_TRUE(ev.got[1].frame.ok());
+  EXPECT_EQ(ev.got[1].frame.address, 0x06);
+  const std::vector<std::pair<Time, Level>> expected = {{0, Level::Low}, {end2, Level::High}};
+  EXPECT_EQ(recactn.edges, expected);
+}
+
+// A cut before the address byte is complete: no start event, and the flag-only fragment
+// is no frame at all.
+TEST(Receiver, ACutInTheOpeningFlagLeavesNothing) {
+  SerialBench b;
+  Events ev(b);
+  const Time t = b.period();
+  b.unit.rxd().line_burst(LineBurst{0, t, telegram_bits(0x05, kData)});
+  b.run_to(6 * t);
+  b.unit.rxd().line_condition(6 * t, LineCondition::Dark, 0);
+  b.run_to(200 * t);
+  EXPECT_TRUE(ev.started.empty());
+  EXPECT_TRUE(ev.got.empty());
+}
+
+// Brief: "A burst at a bit period different from the receiver's rate is distorted:
+// nothing decoded" (RDIST: line_monitor_test).
+TEST(Receiver, ABurstAtAnotherRateDecodesNothing) {
+  SerialBench b;  // 16 Mbit/s
+  Events ev(b);
+  b.unit.rxd().line_burst(LineBurst{0, bit_period_of(8), telegram_bits(0x05, kData)});
+  b.run_to(sim::kMillisecond);
+  EXPECT_TRUE(ev.started.empty());
+  EXPECT_TRUE(ev.got.empty());
+  EXPECT_EQ(b.chip->pin(Pin::RECACTN).level(), Level::High);
+}
+
+// line.hpp: "`at` / `burst.start` may lie in the future of the scheduler's now": the
+// receiver takes such a change when its time comes.
+TEST(Receiver, ChangesAnnouncedForTheFutureAreTakenWhenTheyHappen) {
+  SerialBench b;
+  Events ev(b);
+  PinEdges recactn(b, Pin::RECACTN);
+  const Time t = b.period();
+  const auto bits = telegram_bits(0x07, kData);
+  b.unit.rxd().line_burst(LineBurst{500 * t, t, bits});
+  b.run_to(499 * t);
+  EXPECT_TRUE(recactn.edges.empty());
+  b.run_to(2000 * t);
+  ASSERT_FALSE(recactn.edges.empty());
+  EXPECT_EQ(recactn.edges[0], std::make_pair(500 * t, Level::Low));
+  ASSERT_EQ(ev.got.size(), 1u);
+  EXPECT_EQ(ev.got[0].start, 500 * t);
+}
+
+// Bad input to the line contract: clear exceptions, never UB.
+TEST(Receiver, RefusesMalformedOrOutOfOrderChanges) {
+  SerialBench b;
+  const Time t = b.period();
+  LineListener& rxd = b.unit.rxd();
+  EXPECT_THROW(rxd.line_burst(LineBurst{0, t, nullptr}), std::invalid_argument);
+  EXPECT_THROW(rxd.line_burst(LineBurst{0, 0, telegram_bits(1, kData)}), std::invalid_argument);
+  EXPECT_THROW(rxd.line_condition(0, LineCondition::Idle, 0), std::invalid_argument);
+  EXPECT_THROW(rxd.line_condition(0, LineCondition::Dark, -1), std::invalid_argument);
+  rxd.line_condition(100 * t, LineCondition::Idle, t);
+  EXPECT_THROW(rxd.line_condition(50 * t, LineCondition::Dark, 0), std::invalid_argument);
+  b.run_to(200 * t);
+  EXPECT_THROW(rxd.line_condition(150 * t, LineCondition::Dark, 0), std::invalid_argument);
+  EXPECT_NO_THROW(rxd.line_burst(LineBurst{200 * t, t, telegram_bits(1, kData)}));
+}
+
+// Decisions (line_decode_memo.hpp): bits shared by every hop are decoded once; a changed
+// copy is decoded again; memoization does not change what is reported.
+TEST(Receiver, DecodingIsMemoizedPerSharedBitsObject) {
+  sim::Scheduler scheduler;
+  Chip a(scheduler, ChipConfig{});
+  Chip c(scheduler, ChipConfig{});
+  std::vector<wire::DecodedFrame> seen_a, seen_c;
+  a.unit<SerialUnit>()->on_telegram([&](const ReceivedTelegram& t) { seen_a.push_back(t.frame); });
+  c.unit<SerialUnit>()->on_telegram([&](const ReceivedTelegram& t) { seen_c.push_back(t.frame); });
+  const Time t = a.unit<SerialUnit>()->bit_period();
+  const auto bits = telegram_bits(0x09, kData);
+  const std::size_t before = SerialUnit::decode_count();
+  a.unit<SerialUnit>()->rxd().line_burst(LineBurst{0, t, bits});
+  c.unit<SerialUnit>()->rxd().line_burst(LineBurst{0, t, bits});
+  EXPECT_EQ(SerialUnit::decode_count(), before + 1);
+  const auto copy = std::make_shared<const wire::LineBits>(*bits);
+  scheduler.run_until(1000 * t);
+  a.unit<SerialUnit>()->rxd().line_burst(LineBurst{1000 * t, t, copy});
+  EXPECT_EQ(SerialUnit::decode_count(), before + 2);
+  scheduler.run_until(3000 * t);
+  ASSERT_EQ(seen_a.size(), 2u);
+  ASSERT_EQ(seen_c.size(), 1u);
+  for (const auto& f : {seen_a[0], seen_a[1], seen_c[0]}) {
+    EXPECT_TRUE(f.ok());
+    EXPECT_EQ(f.address, 0x09);
+    EXPECT_EQ(f.data, kData);
+    EXPECT_EQ(f.start_bit, 0u);
+    EXPECT_EQ(f.end_bit, bits->size());
+  }
+}
+
+// Several frames in one burst (e.g. back-to-back telegrams a test builds as one): each is
+// reported with its own times.
+TEST(Receiver, EveryFrameOfABurstIsReported) {
+  SerialBench b;
+  Events ev(b);
+  const Time t = b.period();
+  wire::LineEncoder enc(true);
+  const auto f1 = enc.telegram(0x11, kData);
+  const auto f2 = enc.telegram(0x12, kData);
+  const auto bits = std::make_shared<const wire::LineBits>(enc.take());
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  b.run_to(2000 * t);
+  ASSERT_EQ(ev.got.size(), 2u);
+  EXPECT_EQ(ev.got[0].end, static_cast<Time>(f1.end_bit) * t);
+  EXPECT_EQ(ev.got[1].start, static_cast<Time>(f2.start_bit) * t);
+  EXPECT_EQ(ev.got[1].frame.address, 0x12);
+  EXPECT_EQ(ev.started.size(), 2u);
+}
+
+}  // namespace
+}  // namespace sercon::chip
