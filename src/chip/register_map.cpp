@@ -75,7 +75,8 @@ constexpr BitField kInterruptA[] = {
      "Cycle start: MST sent (master) or accepted (slave)"},
     {"INT_REND", 3, 1, W1C, 0, Both, DeltaSpec,
      "End of a receive telegram a header accepted (delta spec 2.10.2)"},
-    {"INT_TEND", 4, 1, W1C, 0, Both, Project, "End of an own transmit telegram"},
+    {"INT_TEND", 4, 1, W1C, 0, Both, Project,
+     "End of an own list telegram on the line (the MST has INT_CYCST)"},
     {"INT_RERR", 5, 1, W1C, 0, Both, Project,
      "A receive header recorded an error (RERR set: errored or not received)"},
     {"INT_ENDMK", 6, 1, W1C, 0, Both, Project, "End marker time TEND reached"},
@@ -83,7 +84,8 @@ constexpr BitField kInterruptA[] = {
     {"INT_MSTLATE", 8, 1, W1C, 0, Both, Facts, "MST / CYC_CLK after the JTSCYC2 window"},
     {"INT_MSTMISS", 9, 1, W1C, 0, Both, Facts, "No MST by the end of the JTSCYC window"},
     {"INT_RETMST", 10, 1, W1C, 0, Both, Project,
-     "Master: own MST came back outside JTRDEL1..JTRDEL2, or not at all"},
+     "Master: own MST came back outside JTRDEL1..JTRDEL2 (no window while JTRDEL2 = 0), or "
+     "not at all"},
     {"INT_CONCLK", 11, 1, W1C, 0, Both, Project, "CON_CLK became active"},
     {"INT_DIVCLK", 12, 1, W1C, 0, Both, Project, "A DIV_CLK pulse began"},
     {"INT_DMAERR", 13, 1, W1C, 0, Both, Project, "DMA FIFO overrun or underrun"},
@@ -121,8 +123,10 @@ constexpr BitField kTxPort[] = {
 };
 
 constexpr BitField kDma[] = {
-    {"DMARXEN", 0, 1, RW, 0, Both, Project, "Receive FIFO and DMAREQR enabled"},
-    {"DMATXEN", 1, 1, RW, 0, Both, Project, "Transmit FIFO and DMAREQT enabled"},
+    {"DMARXEN", 0, 1, RW, 0, Both, Project,
+     "Receive FIFO and DMAREQR enabled; writing 0 empties the FIFO"},
+    {"DMATXEN", 1, 1, RW, 0, Both, Project,
+     "Transmit FIFO and DMAREQT enabled; writing 0 empties the FIFO"},
     {"TXCNT", 2, 5, R, 0, Both, Project, "Words in the transmit FIFO (0..16)"},
     {"RXCNT", 8, 5, R, 0, Both, Project, "Words in the receive FIFO (0..16)"},
 };
