@@ -4,10 +4,12 @@
 #include "sercon/chip/con_clk.hpp"
 #include "sercon/chip/cycle_control.hpp"
 #include "sercon/chip/div_clk.hpp"
+#include "sercon/chip/dma_port.hpp"
 #include "sercon/chip/interrupts.hpp"
 #include "sercon/chip/nand_tree.hpp"
 #include "sercon/chip/pin_bus.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/telegram_processor.hpp"
 #include "sercon/chip/time_base.hpp"
 #include "sercon/chip/watchdog.hpp"
 
@@ -24,6 +26,9 @@ void Chip::build_units() {
   add_unit<DivClk>();
   add_unit<ConClk>();
   add_unit<SerialUnit>();  // serial interface (docs/serial-and-ring.md)
+  // Telegram processing (docs/telegram-processing.md).
+  add_unit<DmaPort>();
+  add_unit<TelegramProcessor>();
 }
 
 }  // namespace sercon::chip
