@@ -167,8 +167,11 @@ void Chip::enter_reset(ResetCause cause) {
   for (std::size_t i = 0; i < kPinCount; ++i) {
     const Pin p = pin_at(i);
     const PinDirection dir = pin_info(p).direction;
-    // D15-0 and A15-0 belong to the bus interface (PinBus), which is not reset.
-    if (dir == PinDirection::Out && p != Pin::BUSYN) set_output(p, reset_output_level(p));
+    // D15-0 and A15-0 belong to the bus interface (PinBus), which is not reset; BUSYN and
+    // NDTRO (combinational) are driven by their owners without a glitch.
+    if (dir == PinDirection::Out && p != Pin::BUSYN && p != Pin::NDTRO) {
+      set_output(p, reset_output_level(p));
+    }
   }
   for (auto& u : units_) u->reset(cause);
 }
