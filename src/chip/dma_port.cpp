@@ -183,7 +183,7 @@ void DmaPort::read_starts() {
   driven_ = l.data_mask();
   const std::uint16_t data = l.to_data(word);
   for (unsigned bit = 0; bit < 16; ++bit) {
-    if (driven_ & (1u << bit)) chip_.set_output(data_pin(bit), (data >> bit & 1u) != 0);
+    if (driven_ & (1u << bit)) chip_.set_output(data_pin(bit), ((unsigned{data} >> bit) & 1u) != 0);
   }
 }
 

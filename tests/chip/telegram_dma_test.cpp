@@ -75,7 +75,7 @@ class Dma : public ::testing::Test {
   }
   void begin_dma_write(std::uint16_t word) {
     for (unsigned bit = 0; bit < 16; ++bit) {
-      chip().drive(data_pin(bit), sim::level_of((word >> bit & 1u) != 0));
+      chip().drive(data_pin(bit), sim::level_of(((unsigned{word} >> bit) & 1u) != 0));
     }
     chip().drive(Pin::DMAACKTN, Level::Low);
     chip().drive(Pin::WRN, Level::Low);
