@@ -1,0 +1,89 @@
+// A fibre (or any point-to-point serial link): takes a transmitter's line at its input and
+// delivers it to one receiver after a propagation delay, scheduling each change at the time
+// it happens at the far end. It can break and be restored at any time, and can flip line
+// bits at random (seeded). docs/serial-and-ring.md, "Fibre".
+#pragma once
+
+#include <cstdint>
+#include <deque>
+
+#include "sercon/chip/line.hpp"
+#include "sercon/ring/bit_errors.hpp"
+#include "sercon/sim/scheduler.hpp"
+
+namespace sercon::ring {
+
+class Fibre {
+ public:
+  // Light in glass or plastic fibre (refractive index about 1.5) travels 1 m in about 5 ns.
+  static constexpr sim::Time kDefaultPsPerMetre = 5'000;
+
+  // Delay = round(length_m * ps_per_metre) picoseconds. std::invalid_argument for a negative
+  // or non-finite length or a per-metre delay below 0.
+  explicit Fibre(sim::Scheduler& scheduler, double length_m = 0.0,
+                 sim::Time ps_per_metre = kDefaultPsPerMetre);
+  ~Fibre();
+  Fibre(const Fibre&) = delete;
+  Fibre& operator=(const Fibre&) = delete;
+
+  // Where the transmitter (a chip's TxD, SerialUnit::connect_txd) delivers.
+  chip::LineListener& input() { return input_; }
+  // The receiver at the far end (a chip's rxd()); it is told the far end's present
+  // condition at once. It must outlive the connection (or be disconnected first).
+  void connect(chip::LineListener& output);
+  void disconnect() { output_ = nullptr; }
+
+  double length_m() const { return length_m_; }
+  sim::Time delay() const { return delay_; }
+
+  // A break: the far end sees Dark from that moment (a telegram crossing it is cut there);
+  // what enters meanwhile is lost. Restored, the far end gets what arrives then: the present
+  // condition at once (a telegram half-way through counts as the idle fill after it).
+  void break_now();
+  void restore();
+  void break_at(sim::Time t);    // std::invalid_argument if t is in the past
+  void restore_at(sim::Time t);  // likewise
+  bool broken() const { return broken_; }
+
+  // Each line bit of each telegram is flipped with probability p (seeded; p = 0: off).
+  void set_bit_error_rate(double p, std::uint64_t seed);
+  std::uint64_t bit_errors() const { return errors_.flipped(); }
+
+ private:
+  // What the far end would see now if the fibre were whole.
+  struct FarEnd {
+    bool burst = false;
+    chip::LineCondition condition = chip::LineCondition::Dark;
+    sim::Time period = 0;
+    sim::Time end = 0;  // burst end
+  };
+  class Input final : public chip::LineListener {
+   public:
+    explicit Input(Fibre& fibre) : fibre_(fibre) {}
+    void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
+    void line_burst(const chip::LineBurst& burst) override;
+
+   private:
+    Fibre& fibre_;
+  };
+
+  void check_order(sim::Time at);
+  void deliver_condition(sim::Time at, chip::LineCondition condition, sim::Time period);
+  void deliver_burst(const chip::LineBurst& burst);
+  void tell_far_end();
+  sim::Scheduler::EventId schedule(sim::Time at, sim::Scheduler::Callback callback);
+
+  sim::Scheduler& scheduler_;
+  double length_m_;
+  sim::Time delay_;
+  Input input_{*this};
+  chip::LineListener* output_ = nullptr;
+  bool broken_ = false;
+  FarEnd far_;
+  sim::Time last_input_ = 0;
+  BitErrors errors_;
+  std::deque<sim::Scheduler::EventId> pending_;   // deliveries, in time order
+  std::deque<sim::Scheduler::EventId> switches_;  // break_at / restore_at
+};
+
+}  // namespace sercon::ring

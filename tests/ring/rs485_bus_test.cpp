@@ -1,0 +1,134 @@
+// The RS-485 bus (datasheet §1 and Fig. 4: "bus topologies with RS-485 signals are
+// supported"). Project decisions (rs485_bus.hpp): a telegram reaches every other node after
+// the bus delay, a node does not hear itself, the bus is silent (Dark) between telegrams,
+// overlapping telegrams collide into a garbled burst.
+#include "sercon/ring/rs485_bus.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "ring_bench.hpp"
+
+namespace sercon::ring {
+namespace {
+
+using chip::LineCondition;
+using sim::Time;
+using testing::Ear;
+using testing::Recorder;
+
+const std::vector<std::uint8_t> kData = {0x0A, 0x0B, 0x0C, 0x0D, 0x0E, 0x0F};
+constexpr Time kDelay = 20'000;  // 20 ns
+
+// Three chips on one bus, transmitters on, repeaters off; a passive listener as fourth node.
+struct BusBench {
+  BusBench() : bus(s, kDelay), tap(s) {
+    for (int i = 0; i < 3; ++i) {
+      chips.push_back(std::make_unique<chip::Chip>(s, chip::ChipConfig{}));
+      chip::Chip& c = *chips.back();
+      c.reg_write(0x01, static_cast<std::uint16_t>(c.reg_read(0x01) & ~(1u << 3)));  // REPON 0
+      c.reg_write(0x02, 0x0041);  // TxD1 on, light
+      ears.push_back(std::make_unique<Ear>(c));
+      bus.attach(*c.unit<chip::SerialUnit>());
+    }
+    bus.add_node(tap);
+  }
+  chip::SerialUnit& unit(int i) {
+    return *chips[static_cast<std::size_t>(i)]->unit<chip::SerialUnit>();
+  }
+  Ear& ear(int i) { return *ears[static_cast<std::size_t>(i)]; }
+
+  sim::Scheduler s;
+  Rs485Bus bus;
+  Recorder tap;
+  std::vector<std::unique_ptr<chip::Chip>> chips;
+  std::vector<std::unique_ptr<Ear>> ears;
+};
+
+TEST(Rs485Bus, ATelegramReachesEveryOtherNodeAfterTheDelay) {
+  BusBench b;
+  const Time t = b.unit(0).bit_period();
+  const Time start = 100 * t;
+  const Time end = b.unit(0).send(start, 0x05, kData);
+  b.s.run_until(end + 1000 * t);
+  EXPECT_TRUE(b.ear(0).heard.empty());  // not itself
+  for (int i : {1, 2}) {
+    ASSERT_EQ(b.ear(i).heard.size(), 1u) << i;
+    EXPECT_TRUE(b.ear(i).heard[0].frame.ok());
+    EXPECT_EQ(b.ear(i).heard[0].start, start + kDelay);
+    EXPECT_EQ(b.ear(i).heard[0].end, end + kDelay);
+  }
+  // The tap: the burst (shared bits) at start + delay, then silence at end + delay.
+  std::vector<Recorder::Event> after;
+  for (const auto& e : b.tap.events) {
+    if (e.at >= start) after.push_back(e);
+  }
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_TRUE(after[0].burst);
+  EXPECT_EQ(after[0].at, start + kDelay);
+  EXPECT_EQ(after[0].now, start + kDelay);
+  EXPECT_FALSE(after[1].burst);
+  EXPECT_EQ(after[1].condition, LineCondition::Dark);
+  EXPECT_EQ(after[1].at, end + kDelay);
+  EXPECT_EQ(b.bus.collisions(), 0u);
+}
+
+// Two telegrams overlapping: the third node and the tap get the first one cut (an Abort)
+// and then garbage; no good frame at all. The two senders hear each other clean.
+TEST(Rs485Bus, OverlappingTelegramsCollide) {
+  BusBench b;
+  const Time t = b.unit(0).bit_period();
+  const Time a = 100 * t;
+  const Time end_a = b.unit(0).send(a, 0x05, kData);
+  const Time c = a + 40 * t;
+  const Time end_c = b.unit(1).send(c, 0x06, kData);
+  b.s.run_until(std::max(end_a, end_c) + 1000 * t);
+  EXPECT_EQ(b.bus.collisions(), 1u);
+  EXPECT_EQ(b.ear(2).ok_count(), 0u);
+  ASSERT_FALSE(b.ear(2).heard.empty());
+  EXPECT_EQ(b.ear(2).heard[0].frame.error, wire::FrameError::Abort);
+  EXPECT_EQ(b.ear(2).heard[0].end, c + kDelay);
+  ASSERT_EQ(b.ear(0).heard.size(), 1u);
+  EXPECT_EQ(b.ear(0).heard[0].frame.address, 0x06);
+  EXPECT_TRUE(b.ear(0).heard[0].frame.ok());
+  ASSERT_EQ(b.ear(1).heard.size(), 1u);
+  EXPECT_EQ(b.ear(1).heard[0].frame.address, 0x05);
+  EXPECT_TRUE(b.ear(1).heard[0].frame.ok());
+  // After the collision the bus works again.
+  const Time later = b.unit(2).send(std::max(end_a, end_c) + 2000 * t, 0x07, kData);
+  b.s.run_until(later + 1000 * t);
+  EXPECT_EQ(b.ear(0).heard.back().frame.address, 0x07);
+  EXPECT_TRUE(b.ear(0).heard.back().frame.ok());
+}
+
+// A sender whose output is switched off mid-telegram: the others hear it stop there.
+TEST(Rs485Bus, ASenderSwitchedOffMidTelegramCutsIt) {
+  BusBench b;
+  const Time t = b.unit(0).bit_period();
+  b.unit(0).send(100 * t, 0x05, kData);
+  b.s.run_until(130 * t);
+  b.chips[0]->reg_write(0x02, 0);
+  b.s.run_until(1000 * t);
+  ASSERT_EQ(b.ear(1).heard.size(), 1u);
+  EXPECT_FALSE(b.ear(1).heard[0].frame.ok());
+  EXPECT_EQ(b.ear(1).heard[0].end, 130 * t + kDelay);
+}
+
+TEST(Rs485Bus, RefusesBadInput) {
+  sim::Scheduler s;
+  EXPECT_THROW(Rs485Bus(s, -1), std::invalid_argument);
+  Rs485Bus bus(s);
+  Recorder r(s);
+  const std::size_t n = bus.add_node(r);
+  EXPECT_THROW(bus.driver(n + 1), std::out_of_range);
+  EXPECT_THROW(bus.driver(n).line_burst(chip::LineBurst{0, 62'500, nullptr}),
+               std::invalid_argument);
+  bus.driver(n).line_condition(100, LineCondition::Idle, 62'500);
+  EXPECT_THROW(bus.driver(n).line_condition(50, LineCondition::Dark, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sercon::ring
