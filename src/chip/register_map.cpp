@@ -46,7 +46,8 @@ constexpr BitField kSerialMode[] = {
 
 constexpr BitField kSerialControl[] = {
     {"TXOE", 0, 6, RW, 0, Both, Project,
-     "Bit n-1: TxDn driven (1) or high impedance (0); datasheet Table 1 (individual high-Z)"},
+     "Bit n-1: TxDn driven (1) or high impedance (0) while it outputs serial data; datasheet "
+     "Table 1 (individual high-Z). A high-impedance output is dark"},
     {"TXLIGHT", 6, 1, RW, 0, Both, Facts,
      "Optical transmitter on: TxD carry the line signal (1) or stay dark (0); a driver sets "
      "0x007F to switch its LED on and clears 0x0040 to switch it off"},
@@ -57,7 +58,8 @@ constexpr BitField kSerialControl[] = {
      "same coding (delta spec 2.3.3)"},
     {"RDIST", 12, 1, R, 0, Both, Facts, "Receive signal distorted"},
     {"FIBBR", 13, 1, R, 0, Both, Facts, "Fibre broken: no receive signal (ring open)"},
-    {"RECACT", 14, 1, R, 0, Both, Project, "Receiver is inside a telegram (RECACTN pin low)"},
+    {"RECACT", 14, 1, R, 0, Both, Project,
+     "Receiver is inside a telegram (RECACTN pin low): opening flag to closing flag"},
 };
 
 constexpr BitField kTelegramControl[] = {
@@ -118,7 +120,8 @@ constexpr BitField kPhase[] = {
 
 constexpr BitField kTxPort[] = {
     {"PORTSEL", 0, 5, RW, 0, Both, Project,
-     "Bit n-2: TxDn (n = 2..6) is a parallel output port (1) or serial data (0)"},
+     "Bit n-2: TxDn (n = 2..6) is a parallel output port (1) or serial data (0); a port pin "
+     "is always driven (TXOE applies to serial data only)"},
     {"PORTVAL", 8, 5, RW, 0, Both, Project, "Bit n-2: level of TxDn in port mode"},
 };
 
@@ -133,9 +136,12 @@ constexpr BitField kDma[] = {
 
 constexpr BitField kLineMonitor[] = {
     {"RDISTLIM", 0, 8, RW, 0x0A, Both, Project,
-     "Distorted edges in a row that make RDIST (a driver writes 0xFF0A)"},
+     "Distorted edges in a row that set RDIST: edges of a signal at a bit rate other than the "
+     "receiver's; an edge at the own rate clears the count and RDIST; 0 counts as 1 (a "
+     "driver writes 0xFF0A)"},
     {"FIBBRTIM", 8, 8, RW, 0xFF, Both, Project,
-     "Bit times without any edge after which the signal counts as missing (FIBBR)"},
+     "Bit times without any edge after which the signal counts as missing (FIBBR); values "
+     "below 8 count as 8 (idle fill has an edge every 8 bit times)"},
 };
 
 constexpr BitField kClockDivider[] = {
