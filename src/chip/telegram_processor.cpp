@@ -70,11 +70,10 @@ std::uint8_t TelegramProcessor::phase() const {
   return static_cast<std::uint8_t>((master() ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
 }
 
-// Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it.
-bool TelegramProcessor::address_flag_phase() const {
-  const std::uint8_t p = phase();
-  return !master() && (p == 1 || p == 2);
-}
+// Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it. The chip
+// tells phases apart only as 0..2 and 3..7 (COMPT0/1, TSCYC0/1), and a drive must not send
+// at all in CP0 (facts §2), so the gate holds in phase 0 too (docs/telegram-processing.md).
+bool TelegramProcessor::address_flag_phase() const { return !master() && phase() <= 2; }
 
 // --- cycles -----------------------------------------------------------------------------
 

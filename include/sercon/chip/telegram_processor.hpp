@@ -56,7 +56,7 @@ class TelegramProcessor : public ChipUnit, private ListClient {
 
   bool master() const { return regmode_.on(regs_); }
   std::uint8_t phase() const;
-  bool address_flag_phase() const;  // slave in CP1 / CP2: FLMDTADR gates the ATs
+  bool address_flag_phase() const;  // slave in CP0..2: FLMDTADR gates the ATs
   ServiceChannelPort& port() { return *port_; }
 
   void on_cycle_start(const CycleStart& start);
