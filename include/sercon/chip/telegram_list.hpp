@@ -68,7 +68,7 @@ class TelegramList {
   // A cycle starts: a receive header still waiting is missed, then the walk starts at
   // the list RAM word `list_pointer` names (COMPT0 or COMPT1).
   void start(std::uint16_t list_pointer);
-  // Forget everything (reset, mode change); no client calls.
+  // Forgets the walk (reset); no client calls.
   void stop();
 
   // A telegram whose opening flag began at `start` brings `address`: is it the waiting
@@ -77,9 +77,6 @@ class TelegramList {
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
   // it had not been offered (its window may have closed meanwhile: then it is missed).
   void reclaim(const ListItem& item);
-
-  // Items read since the last start (for tests and faults).
-  std::uint32_t items_read() const { return items_read_; }
 
  private:
   enum class State : std::uint8_t { Idle, Transmit, Receive, End };
@@ -105,7 +102,7 @@ class TelegramList {
   sim::Scheduler::EventId window_judge_{};  // a TCHK header's window is over
   sim::Time window_opens_ = std::numeric_limits<sim::Time>::min();
   sim::Time window_closes_ = 0;
-  std::uint32_t items_read_ = 0;
+  std::uint32_t items_read_ = 0;  // since the cycle start: more than RAM / 2 is a loop
 };
 
 }  // namespace sercon::chip

@@ -31,8 +31,6 @@ class MasterMst {
   // Reset: nothing awaited. Does not touch the time base (it may be gone).
   void stop() { awaiting_ = false; }
 
-  bool awaiting_return() const { return awaiting_; }
-
  private:
   void error();
   void window_ends();
