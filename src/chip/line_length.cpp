@@ -62,7 +62,7 @@ std::size_t address_end_bit(std::uint8_t address) {
   std::size_t bits = kFlagBits + 8;
   unsigned run = 0;
   for (unsigned bit = 0; bit < 7; ++bit) {  // a 0 stuffed after bit 7 comes after the address
-    run = ((address >> bit) & 1u) != 0 ? run + 1 : 0;
+    run = ((unsigned{address} >> bit) & 1u) != 0 ? run + 1 : 0;
     if (run == 5) {
       ++bits;
       run = 0;

@@ -73,7 +73,9 @@ TxdOutputs::View TxdOutputs::view_of(unsigned pin) const {
   const SerialFields& f = unit_.fields();
   View v;
   if (!unit_.running()) return v;  // reset: high impedance (TXOE = 0)
-  const auto bit = [](std::uint16_t field, unsigned n) { return ((field >> n) & 1u) != 0; };
+  const auto bit = [](std::uint16_t field, unsigned n) {
+    return ((unsigned{field} >> n) & 1u) != 0;
+  };
   if (pin >= 2 && bit(f.portsel.get(regs), pin - 2)) {
     // Port mode (datasheet Table 1: high impedance is a feature of the data function).
     v.mode = Mode::Port;
