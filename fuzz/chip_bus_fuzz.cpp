@@ -107,6 +107,26 @@ struct BusyWatch {
   Time low_since_ = -1;
 };
 
+// Work per input is bounded by events, not simulated time: a chip programmed for a cycle
+// every MCLK period makes millions of events in a few simulated milliseconds.
+struct EventBudget {
+  std::size_t left = 100'000;
+  // Runs events up to `until`; false (and the clock left where it is) when the budget
+  // ran out first.
+  bool run_until(sercon::sim::Scheduler& scheduler, Time until) {
+    for (;;) {
+      const auto next = scheduler.next_time();
+      if (!next || *next > until) {
+        scheduler.run_until(until);
+        return true;
+      }
+      if (left == 0) return false;
+      --left;
+      scheduler.step();
+    }
+  }
+};
+
 void drive(Chip& chip, Pin p, Level level) {
   try {
     chip.drive(p, level);
@@ -115,7 +135,8 @@ void drive(Chip& chip, Pin p, Level level) {
   }
 }
 
-void one_operation(FuzzedDataProvider& in, Chip& chip, BusyWatch& busy) {
+// Returns false when the input's event budget is spent.
+bool one_operation(FuzzedDataProvider& in, Chip& chip, BusyWatch& busy, EventBudget& budget) {
   sercon::sim::Scheduler& scheduler = chip.scheduler();
   const std::uint16_t ram_words = chip.ram().size();
   switch (in.ConsumeIntegralInRange(0, 8)) {
@@ -170,26 +191,29 @@ void one_operation(FuzzedDataProvider& in, Chip& chip, BusyWatch& busy) {
     case 5: {  // a pin-level read or write strobe on the current pins
       const Pin strobe = in.ConsumeBool() ? Pin::RDN : Pin::WRN;
       drive(chip, strobe, Level::Low);
-      if (in.ConsumeBool())
-        scheduler.run_until(scheduler.now() + in.ConsumeIntegralInRange(0, 200'000));
+      const Time hold = in.ConsumeBool() ? in.ConsumeIntegralInRange<Time>(0, 200'000) : 0;
+      if (!budget.run_until(scheduler, scheduler.now() + hold)) return false;
       drive(chip, strobe, Level::High);
       break;
     }
     case 6: {  // a short time step (up to 20 µs)
-      scheduler.run_until(scheduler.now() + in.ConsumeIntegralInRange<Time>(0, 20'000'000));
+      const Time step = in.ConsumeIntegralInRange<Time>(0, 20'000'000);
+      if (!budget.run_until(scheduler, scheduler.now() + step)) return false;
       break;
     }
     case 7: {  // a long time step (up to 5 ms): lets timers and the watchdog run out
-      scheduler.run_until(scheduler.now() + in.ConsumeIntegralInRange<Time>(0, 5'000'000'000));
+      const Time step = in.ConsumeIntegralInRange<Time>(0, 5'000'000'000);
+      if (!budget.run_until(scheduler, scheduler.now() + step)) return false;
       break;
     }
     case 8: {  // MCLK-aligned step, so collisions land on period edges
-      scheduler.run_until(chip.next_mclk_edge(scheduler.now() + 1));
+      if (!budget.run_until(scheduler, chip.next_mclk_edge(scheduler.now() + 1))) return false;
       break;
     }
   }
   busy.check_now();
   check_outputs(chip);
+  return true;
 }
 
 }  // namespace
@@ -199,6 +223,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   sercon::sim::Scheduler scheduler;
   Chip chip(scheduler, fuzzed_config(in));
   BusyWatch busy(chip);
-  for (int ops = 0; ops < 256 && in.remaining_bytes() > 0; ++ops) one_operation(in, chip, busy);
+  EventBudget budget;
+  for (int ops = 0; ops < 256 && in.remaining_bytes() > 0; ++ops) {
+    if (!one_operation(in, chip, busy, budget)) break;
+  }
   return 0;
 }

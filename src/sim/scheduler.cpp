@@ -50,4 +50,10 @@ bool Scheduler::step() {
   return run_next_due(queue_.top().when);
 }
 
+std::optional<Time> Scheduler::next_time() {
+  while (!queue_.empty() && !callbacks_.contains(queue_.top().id)) queue_.pop();
+  if (queue_.empty()) return std::nullopt;
+  return queue_.top().when;
+}
+
 }  // namespace sercon::sim

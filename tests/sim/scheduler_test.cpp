@@ -76,6 +76,18 @@ TEST(Scheduler, StepRunsOneEventAndSkipsCancelledOnes) {
   EXPECT_FALSE(s.step());
 }
 
+TEST(Scheduler, NextTimeSkipsCancelledEventsAndRunsNothing) {
+  Scheduler s;
+  EXPECT_EQ(s.next_time(), std::nullopt);
+  auto first = s.at(5, [] {});
+  s.at(9, [] {});
+  EXPECT_EQ(s.next_time(), 5);
+  s.cancel(first);
+  EXPECT_EQ(s.next_time(), 9);
+  EXPECT_EQ(s.now(), 0);
+  EXPECT_EQ(s.pending_count(), 1u);
+}
+
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
   EXPECT_EQ(period_of_hz(16'000'000), 62'500);  // 16 Mbit/s bit: 62.5 ns
   EXPECT_EQ(period_of_hz(64'000'000), 15'625);  // 64 MHz MCLK: 15.625 ns

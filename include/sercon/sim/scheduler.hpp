@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <queue>
 #include <unordered_map>
 #include <vector>
@@ -38,6 +39,9 @@ class Scheduler {
   void run_until(Time until);
   // Runs the earliest pending event, if any. Returns false when none is pending.
   bool step();
+  // Time of the earliest pending event; nullopt when none is pending. Lets a caller run
+  // events one by one up to a time (e.g. a fuzzer bounding the work per input).
+  std::optional<Time> next_time();
 
  private:
   struct Entry {
