@@ -18,14 +18,42 @@ SerialReceiver::~SerialReceiver() {
 
 void SerialReceiver::cancel_chip_events() {
   sim::Scheduler& s = unit_.chip().scheduler();
-  for (const FrameEvents& e : current_.events) {
-    s.cancel(e.address);
-    s.cancel(e.detected);
-  }
-  for (const auto id : earlier_) s.cancel(id);
+  for (const Report& r : reports_) s.cancel(r.event);
   s.cancel(recact_event_);
   current_ = Current{};
-  earlier_.clear();
+  reports_.clear();
+  free_reports_.clear();
+}
+
+std::size_t SerialReceiver::schedule_report(sim::Time when, Report report) {
+  std::size_t slot = reports_.size();
+  if (free_reports_.empty()) {
+    reports_.push_back(std::move(report));
+  } else {
+    slot = free_reports_.back();
+    free_reports_.pop_back();
+    reports_[slot] = std::move(report);
+  }
+  reports_[slot].event = unit_.chip().scheduler().at(when, [this, slot] { fire(slot); });
+  return slot;
+}
+
+void SerialReceiver::cancel_report(std::size_t slot, sim::Scheduler::EventId event) {
+  if (slot == kNone || !unit_.chip().scheduler().cancel(event)) return;
+  reports_[slot] = Report{};
+  free_reports_.push_back(slot);
+}
+
+void SerialReceiver::fire(std::size_t slot) {
+  const Report r = std::move(reports_[slot]);
+  reports_[slot] = Report{};
+  free_reports_.push_back(slot);
+  const wire::DecodedFrame& f = r.decode->frames[r.frame];
+  if (r.telegram) {
+    on_telegram_(ReceivedTelegram{r.start, r.end, r.detected, f});
+  } else {
+    on_start_(r.start, f.address);
+  }
 }
 
 void SerialReceiver::reset() {
@@ -106,9 +134,11 @@ void SerialReceiver::cut_current(sim::Time at) {
   std::vector<std::size_t> started;  // start bits of frames whose start event already ran
   for (std::size_t i = first; i < current_.events.size(); ++i) {
     const FrameEvents& e = current_.events[i];
-    if (e.address.value != 0 && !s.pending(e.address)) started.push_back(old.frames[i].start_bit);
-    s.cancel(e.address);
-    s.cancel(e.detected);
+    if (e.address != kNone && !s.pending(e.address_event)) {
+      started.push_back(old.frames[i].start_bit);
+    }
+    cancel_report(e.address, e.address_event);
+    cancel_report(e.detected, e.detected_event);
   }
   current_.decode = decode_burst_prefix(current_.bits, cut_bit);
   current_.cut = at;
@@ -122,17 +152,8 @@ void SerialReceiver::cut_current(sim::Time at) {
   schedule_frames(first);
 }
 
-void SerialReceiver::retire_current() {
-  sim::Scheduler& s = unit_.chip().scheduler();
-  if (earlier_.size() > 16) {
-    std::erase_if(earlier_, [&s](sim::Scheduler::EventId id) { return !s.pending(id); });
-  }
-  for (const FrameEvents& e : current_.events) {
-    if (s.pending(e.address)) earlier_.push_back(e.address);
-    if (s.pending(e.detected)) earlier_.push_back(e.detected);
-  }
-  current_.events.clear();
-}
+// Reports of a finished burst can no longer be cut: they just wait for their time.
+void SerialReceiver::retire_current() { current_.events.clear(); }
 
 void SerialReceiver::receive(const RxdSegment& burst) {
   if (burst.period != unit_.bit_period()) return;  // distorted: the monitor counts it
@@ -166,15 +187,14 @@ void SerialReceiver::schedule_frames(std::size_t first) {
     const sim::Time address_in =
         current_.start + static_cast<sim::Time>(address_end) * current_.period;
     if (on_start_ && !e.address_done && address_end <= f.end_bit && address_in <= current_.cut) {
-      const std::uint8_t address = f.address;
-      e.address = s.at(std::max(pipeline(address_in), s.now()),
-                       [this, start, address] { on_start_(start, address); });
+      e.address = schedule_report(std::max(pipeline(address_in), s.now()),
+                                  Report{decode, i, start, end, 0, false, {}});
+      e.address_event = reports_[e.address].event;
     }
     if (on_telegram_) {
       const sim::Time detected = pipeline(end);
-      e.detected = s.at(detected, [this, decode, i, start, end, detected] {
-        on_telegram_(ReceivedTelegram{start, end, detected, decode->frames[i]});
-      });
+      e.detected = schedule_report(detected, Report{decode, i, start, end, detected, true, {}});
+      e.detected_event = reports_[e.detected].event;
     }
   }
 }

@@ -11,7 +11,7 @@
 namespace sercon::chip {
 
 void SerialRepeater::cancel() {
-  for (const auto id : pending_) unit_.chip().scheduler().cancel(id);
+  for (const Pending& p : pending_) unit_.chip().scheduler().cancel(p.event);
   pending_.clear();
 }
 
@@ -40,14 +40,16 @@ void SerialRepeater::input(const RxdSegment& segment) {
   // Times stay in order even if the delay shrinks (a faster rate chosen meanwhile).
   const sim::Time at = std::max(forward_time(segment.since), last_forward_);
   last_forward_ = at;
-  RxdSegment out = segment;
-  out.since = at;
-  pending_.push_back(unit_.chip().scheduler().at(at, [this, out] { forward(out); }));
+  pending_.push_back(Pending{segment, {}});
+  pending_.back().segment.since = at;
+  // The callback holds `this` only (no allocation); the segment waits in pending_.
+  pending_.back().event = unit_.chip().scheduler().at(at, [this] { forward(); });
 }
 
-void SerialRepeater::forward(RxdSegment segment) {
+void SerialRepeater::forward() {
+  forwarded_ = std::move(pending_.front().segment);
   pending_.pop_front();
-  forwarded_ = segment;
+  const RxdSegment& segment = forwarded_;
   if (own_active_) return;  // own telegram wins; a burst starting under it is lost whole
   if (segment.is_burst) {
     unit_.outputs().line_burst(segment.burst());

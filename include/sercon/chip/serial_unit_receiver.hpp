@@ -39,11 +39,21 @@ class SerialReceiver final : public LineListener {
   const RxdSegment& input() const { return input_; }
 
  private:
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  // An event for the telegram processor waiting for its time. The scheduled callback holds
+  // only `this` and the slot (no allocation per event).
+  struct Report {
+    std::shared_ptr<const BurstDecode> decode;  // keeps the frame alive
+    std::size_t frame = 0;
+    sim::Time start = 0, end = 0, detected = 0;
+    bool telegram = false;  // the telegram event; false: the start event
+    sim::Scheduler::EventId event;
+  };
   struct FrameEvents {
-    sim::Scheduler::EventId address, detected;
+    std::size_t address = kNone, detected = kNone;  // report slots
+    sim::Scheduler::EventId address_event, detected_event;
     bool address_done = false;  // the start event ran (or the frame has no whole address)
   };
-  // The burst being received (or the last one): its decode and the events it scheduled.
   struct Current {
     bool active = false;
     sim::Time start = 0, period = 0;
@@ -60,8 +70,11 @@ class SerialReceiver final : public LineListener {
   void schedule_frames(std::size_t first);
   void schedule_recact();  // RECACTN low from the first frame's start to the last one's end
   void set_recact(bool active);
-  void retire_current();                  // the current burst's pending events become `earlier_`
+  void retire_current();  // the current burst is over: its reports can no longer change
   sim::Time pipeline(sim::Time t) const;  // first MCLK edge at or after t + 5.5 bit + 3 MCLK
+  std::size_t schedule_report(sim::Time when, Report report);
+  void cancel_report(std::size_t slot, sim::Scheduler::EventId event);
+  void fire(std::size_t slot);
   void cancel_chip_events();
 
   SerialUnit& unit_;
@@ -70,7 +83,8 @@ class SerialReceiver final : public LineListener {
   RxdSegment input_;
   sim::Time last_change_ = 0;
   Current current_;
-  std::vector<sim::Scheduler::EventId> earlier_;  // detections of earlier bursts
+  std::vector<Report> reports_;  // slots; a free slot holds an empty Report
+  std::vector<std::size_t> free_reports_;
   std::deque<sim::Scheduler::EventId> deferred_;  // changes announced for the future
   sim::Scheduler::EventId recact_event_{};
   bool recact_ = false;

@@ -38,15 +38,19 @@ class SerialRepeater {
   bool on() const { return repon_; }
 
  private:
-  void forward(RxdSegment segment);
+  struct Pending {
+    RxdSegment segment;  // as it leaves TxD
+    sim::Scheduler::EventId event;
+  };
+  void forward();    // the front of pending_ is due
   void show_line();  // the line's condition when no own telegram is in the way
   void cancel();
 
   SerialUnit& unit_;
   bool repon_ = false;
   bool own_active_ = false;
-  RxdSegment forwarded_;                         // the received signal as it reaches TxD
-  std::deque<sim::Scheduler::EventId> pending_;  // forwards in time order
+  RxdSegment forwarded_;         // the received signal as it reaches TxD
+  std::deque<Pending> pending_;  // forwards in time order
   sim::Time last_forward_ = 0;
 };
 
