@@ -33,7 +33,7 @@ Fibre::Fibre(sim::Scheduler& scheduler, double length_m, sim::Time ps_per_metre)
     : scheduler_(scheduler), length_m_(length_m), delay_(delay_of(length_m, ps_per_metre)) {}
 
 Fibre::~Fibre() {
-  for (const auto id : pending_) scheduler_.cancel(id);
+  for (const Delivery& d : pending_) scheduler_.cancel(d.event);
   for (const auto id : switches_) scheduler_.cancel(id);
 }
 
@@ -54,13 +54,18 @@ void Fibre::check_order(sim::Time at) {
   last_input_ = at;
 }
 
-sim::Scheduler::EventId Fibre::schedule(sim::Time at, sim::Scheduler::Callback callback) {
-  const auto id = scheduler_.at(at, [this, cb = std::move(callback)] {
-    pending_.pop_front();
-    cb();
-  });
-  pending_.push_back(id);
-  return id;
+// Deliveries wait in pending_ (time order); each event holds `this` only, no allocation.
+void Fibre::schedule(Delivery delivery) {
+  const sim::Time at = delivery.burst.start;
+  pending_.push_back(std::move(delivery));
+  pending_.back().event = scheduler_.at(at, [this] { deliver(); });
+}
+
+void Fibre::deliver() {
+  const Delivery d = std::move(pending_.front());
+  pending_.pop_front();
+  if (d.is_burst) return deliver_burst(d.burst);
+  deliver_condition(d.burst.start, d.condition, d.burst.bit_period);
 }
 
 void Fibre::Input::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
@@ -69,10 +74,11 @@ void Fibre::Input::line_condition(sim::Time at, LineCondition condition, sim::Ti
                                 " with bit period " + std::to_string(period) + " ps");
   }
   fibre_.check_order(at);
-  const sim::Time p = toggles(condition) ? period : 0;
-  const sim::Time far = at + fibre_.delay_;
-  fibre_.schedule(far,
-                  [f = &fibre_, far, condition, p] { f->deliver_condition(far, condition, p); });
+  Delivery d;
+  d.condition = condition;
+  d.burst.start = at + fibre_.delay_;
+  d.burst.bit_period = toggles(condition) ? period : 0;
+  fibre_.schedule(std::move(d));
 }
 
 void Fibre::Input::line_burst(const LineBurst& burst) {
@@ -80,10 +86,12 @@ void Fibre::Input::line_burst(const LineBurst& burst) {
     throw std::invalid_argument("Fibre input: a burst needs bits and a bit period > 0");
   }
   fibre_.check_order(burst.start);
-  LineBurst out = burst;
-  out.start += fibre_.delay_;
-  if (fibre_.errors_.enabled()) out.bits = fibre_.errors_.apply(burst.bits);
-  fibre_.schedule(out.start, [f = &fibre_, out] { f->deliver_burst(out); });
+  Delivery d;
+  d.is_burst = true;
+  d.burst = burst;
+  d.burst.start += fibre_.delay_;
+  if (fibre_.errors_.enabled()) d.burst.bits = fibre_.errors_.apply(burst.bits);
+  fibre_.schedule(std::move(d));
 }
 
 void Fibre::deliver_condition(sim::Time at, LineCondition condition, sim::Time period) {

@@ -32,6 +32,11 @@ Ring::Ring(sim::Scheduler& scheduler, const chip::ChipConfig& master,
   nodes_.push_back(std::make_unique<chip::Chip>(scheduler_, master));
   for (const auto& config : slaves)
     nodes_.push_back(std::make_unique<chip::Chip>(scheduler_, config));
+  for (const auto& n : nodes_) {
+    auto* unit = n->unit<chip::SerialUnit>();
+    if (!unit) throw std::logic_error("Ring: the chip has no serial unit");
+    serials_.push_back(unit);
+  }
   fibres_.reserve(fibres);
   for (std::size_t i = 0; i < fibres; ++i) {
     const double length =
@@ -65,9 +70,8 @@ chip::Chip& Ring::node(std::size_t i) {
 }
 
 chip::SerialUnit& Ring::serial(std::size_t i) {
-  auto* unit = node(i).unit<chip::SerialUnit>();
-  if (!unit) throw std::logic_error("Ring: the chip has no serial unit");
-  return *unit;
+  node(i);  // range check
+  return *serials_[i];
 }
 
 Fibre& Ring::fibre(std::size_t i) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <vector>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/ring/bit_errors.hpp"
@@ -67,11 +68,20 @@ class Fibre {
     Fibre& fibre_;
   };
 
+  // A change on its way to the far end: a burst, or a condition at burst.start with
+  // burst.bit_period as its period.
+  struct Delivery {
+    bool is_burst = false;
+    chip::LineCondition condition = chip::LineCondition::Dark;
+    chip::LineBurst burst;
+    sim::Scheduler::EventId event;
+  };
   void check_order(sim::Time at);
+  void schedule(Delivery delivery);
+  void deliver();  // the front of pending_ is due
   void deliver_condition(sim::Time at, chip::LineCondition condition, sim::Time period);
   void deliver_burst(const chip::LineBurst& burst);
   void tell_far_end();
-  sim::Scheduler::EventId schedule(sim::Time at, sim::Scheduler::Callback callback);
 
   sim::Scheduler& scheduler_;
   double length_m_;
@@ -82,8 +92,8 @@ class Fibre {
   FarEnd far_;
   sim::Time last_input_ = 0;
   BitErrors errors_;
-  std::deque<sim::Scheduler::EventId> pending_;   // deliveries, in time order
-  std::deque<sim::Scheduler::EventId> switches_;  // break_at / restore_at
+  std::deque<Delivery> pending_;                   // in time order
+  std::vector<sim::Scheduler::EventId> switches_;  // break_at / restore_at
 };
 
 }  // namespace sercon::ring

@@ -52,6 +52,7 @@ class Ring {
  private:
   sim::Scheduler& scheduler_;
   std::vector<std::unique_ptr<chip::Chip>> nodes_;
+  std::vector<chip::SerialUnit*> serials_;      // each node's, found once
   std::vector<std::unique_ptr<Fibre>> fibres_;  // destroyed first: they reference the nodes
 };
 
