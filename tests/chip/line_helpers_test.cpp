@@ -15,7 +15,7 @@
 namespace sercon::chip {
 namespace {
 
-TEST(LineLength, EqualsTheEncodersOutputForRandomTelegrams) {
+TEST(serial_LineLength, EqualsTheEncodersOutputForRandomTelegrams) {
   std::mt19937 rng(7);
   for (int i = 0; i < 2000; ++i) {
     std::vector<std::uint8_t> data(rng() % 64);
@@ -27,14 +27,14 @@ TEST(LineLength, EqualsTheEncodersOutputForRandomTelegrams) {
   }
 }
 
-TEST(LineLength, AddressEndCountsStuffingInsideTheAddressOnly) {
+TEST(serial_LineLength, AddressEndCountsStuffingInsideTheAddressOnly) {
   EXPECT_EQ(address_end_bit(0x00), 16u);
   EXPECT_EQ(address_end_bit(0x1F), 17u);  // 1 1 1 1 1 (0) 0 0 0
   EXPECT_EQ(address_end_bit(0xF8), 16u);  // five 1s end with bit 7: the 0 comes after
   EXPECT_EQ(address_end_bit(0xFF), 17u);  // 1 1 1 1 1 (0) 1 1 1
 }
 
-TEST(LineEdges, CountAndFindMatchTheSlowWay) {
+TEST(serial_LineEdges, CountAndFindMatchTheSlowWay) {
   std::mt19937 rng(11);
   for (int i = 0; i < 200; ++i) {
     wire::LineBits bits;

@@ -43,7 +43,7 @@ void expect_rises_at(SerialBench& b, std::uint16_t mask, Time t) {
 
 // FIBBRTIM resets to 0xFF: with nothing on RxD since release (time 0), FIBBR rises 255 bit
 // times later and latches INT_FIBBR; L_ERRN stays high until LEMISS asks for it.
-TEST(LineMonitor, NoSignalSetsFibbrAfterFibbrtimBitTimes) {
+TEST(serial_LineMonitor, NoSignalSetsFibbrAfterFibbrtimBitTimes) {
   SerialBench b;
   const Time t = b.period();
   EXPECT_FALSE(bit(b, kIntStat, kIntFibbr));
@@ -61,7 +61,7 @@ TEST(LineMonitor, NoSignalSetsFibbrAfterFibbrtimBitTimes) {
 
 // A break: the line goes dark at t0; FIBBR follows FIBBRTIM bit times later. Continuous
 // light has no edges either.
-TEST(LineMonitor, DarkOrSteadyLightForFibbrtimBitTimesIsABreak) {
+TEST(serial_LineMonitor, DarkOrSteadyLightForFibbrtimBitTimesIsABreak) {
   for (const LineCondition steady : {LineCondition::Dark, LineCondition::Light}) {
     SerialBench b;
     const Time t = b.period();
@@ -76,7 +76,7 @@ TEST(LineMonitor, DarkOrSteadyLightForFibbrtimBitTimesIsABreak) {
 
 // Decision: a healthy idle line changes level every 8 bit times, so FIBBRTIM below 8
 // counts as 8.
-TEST(LineMonitor, FibbrtimBelowEightCountsAsEight) {
+TEST(serial_LineMonitor, FibbrtimBelowEightCountsAsEight) {
   SerialBench b;
   const Time t = b.period();
   b.unit.rxd().line_condition(0, LineCondition::Idle, t);
@@ -87,7 +87,7 @@ TEST(LineMonitor, FibbrtimBelowEightCountsAsEight) {
 }
 
 // Writing a new FIBBRTIM while dark moves the deadline (counted from the last edge).
-TEST(LineMonitor, ANewFibbrtimAppliesToTheRunningDarkness) {
+TEST(serial_LineMonitor, ANewFibbrtimAppliesToTheRunningDarkness) {
   SerialBench b;
   const Time t = b.period();
   b.unit.rxd().line_condition(0, LineCondition::Idle, t);
@@ -100,7 +100,7 @@ TEST(LineMonitor, ANewFibbrtimAppliesToTheRunningDarkness) {
 // Decision (serial_unit_monitor.hpp): RDISTLIM distorted edges in a row make RDIST; idle
 // fill sent at 8 Mbit/s to a 16 Mbit/s receiver has an edge every 8 of its bit times, all
 // distorted: with RDISTLIM = 10 (reset value) RDIST rises at the 10th edge.
-TEST(LineMonitor, IdleAtAnotherRateIsDistortedAfterRdistlimEdges) {
+TEST(serial_LineMonitor, IdleAtAnotherRateIsDistortedAfterRdistlimEdges) {
   SerialBench b;
   b.chip->reg_write(kSerCtrl, kLedist);
   const Time slow = bit_period_of(8);
@@ -117,7 +117,7 @@ TEST(LineMonitor, IdleAtAnotherRateIsDistortedAfterRdistlimEdges) {
 
 // A telegram at another rate: its level changes are the distorted edges; RDIST rises at
 // the RDISTLIM-th one (counted here the slow way from the bits).
-TEST(LineMonitor, ATelegramAtAnotherRateCountsItsEdges) {
+TEST(serial_LineMonitor, ATelegramAtAnotherRateCountsItsEdges) {
   SerialBench b;
   b.chip->reg_write(kLineMon, 0xFF05);  // RDISTLIM = 5
   const Time slow = bit_period_of(4);
@@ -139,7 +139,7 @@ TEST(LineMonitor, ATelegramAtAnotherRateCountsItsEdges) {
 
 // Distorted edges are counted "in a row" across changes; a telegram at the receiver's own
 // rate is a clean edge and starts the count again.
-TEST(LineMonitor, CleanEdgesRestartTheCount) {
+TEST(serial_LineMonitor, CleanEdgesRestartTheCount) {
   SerialBench b;
   const Time t = b.period();
   const Time slow = bit_period_of(8);
@@ -156,7 +156,7 @@ TEST(LineMonitor, CleanEdgesRestartTheCount) {
 }
 
 // Decision: RDISTLIM = 0 counts as 1 (the first distorted edge).
-TEST(LineMonitor, RdistlimZeroCountsAsOne) {
+TEST(serial_LineMonitor, RdistlimZeroCountsAsOne) {
   SerialBench b;
   b.chip->reg_write(kLineMon, 0xFF00);
   b.run_to(1000);
@@ -165,7 +165,7 @@ TEST(LineMonitor, RdistlimZeroCountsAsOne) {
 }
 
 // L_ERRN = !((RDIST & LEDIST) | (FIBBR & LEMISS)): each cause only counts when enabled.
-TEST(LineMonitor, LineErrorPinFollowsTheEnabledCauses) {
+TEST(serial_LineMonitor, LineErrorPinFollowsTheEnabledCauses) {
   SerialBench b;
   const Time t = b.period();
   b.run_to(300 * t);  // FIBBR (no signal)
@@ -179,7 +179,7 @@ TEST(LineMonitor, LineErrorPinFollowsTheEnabledCauses) {
 }
 
 // A reset clears RDIST / FIBBR; the monitor starts again at release.
-TEST(LineMonitor, ResetStartsTheMonitorAgain) {
+TEST(serial_LineMonitor, ResetStartsTheMonitorAgain) {
   SerialBench b;
   const Time t = b.period();
   b.run_to(300 * t);

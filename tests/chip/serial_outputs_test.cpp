@@ -45,7 +45,7 @@ Level pin(SerialBench& b, unsigned n) { return b.chip->pin(txd_pin(n)).level(); 
 
 // Register table: TXOE resets to 0, so after reset every TxD is high impedance and the
 // fibres behind them are dark.
-TEST(TxdOutputs, AfterResetEveryOutputIsHighImpedanceAndDark) {
+TEST(serial_TxdOutputs, AfterResetEveryOutputIsHighImpedanceAndDark) {
   SerialBench b;
   AllOutputs out(b);
   for (unsigned n = 1; n <= 6; ++n) {
@@ -56,7 +56,7 @@ TEST(TxdOutputs, AfterResetEveryOutputIsHighImpedanceAndDark) {
 
 // Datasheet Table 1: each data output "can be switched to a high impedance state
 // individually" (TXOE bit n-1).
-TEST(TxdOutputs, EachOutputHasItsOwnHighImpedanceBit) {
+TEST(serial_TxdOutputs, EachOutputHasItsOwnHighImpedanceBit) {
   SerialBench b;
   AllOutputs out(b);
   b.chip->reg_write(kSerCtrl, static_cast<std::uint16_t>((1u << 2) | kTxLight));  // TxD3 only
@@ -70,7 +70,7 @@ TEST(TxdOutputs, EachOutputHasItsOwnHighImpedanceBit) {
 // clearing 0x0040): a driven output with the transmitter off shows the no-light level and
 // the fibre is dark; with POLTXD = 1 light is a low level on the pin, the fibre still
 // carries light (docs/serial-and-ring.md, "Polarity").
-TEST(TxdOutputs, TxlightAndPolarity) {
+TEST(serial_TxdOutputs, TxlightAndPolarity) {
   SerialBench b;
   b.chip->reg_write(kSerCtrl, kTxoe1);
   EXPECT_EQ(pin(b, 1), Level::Low);
@@ -89,7 +89,7 @@ TEST(TxdOutputs, TxlightAndPolarity) {
 // Datasheet Table 1: TxD6-2 "can be used as parallel output ports"; PORTSEL bit n-2 selects
 // the port function, PORTVAL bit n-2 the level (register table). High impedance belongs to
 // the data function, so TXOE does not switch a port pin off. TxD1 has no port function.
-TEST(TxdOutputs, PortModeDrivesPortvalWhateverTxoe) {
+TEST(serial_TxdOutputs, PortModeDrivesPortvalWhateverTxoe) {
   SerialBench b;
   AllOutputs out(b);
   b.chip->reg_write(kTxPort, 0x0101);  // TxD2 port, level 1
@@ -110,7 +110,7 @@ TEST(TxdOutputs, PortModeDrivesPortvalWhateverTxoe) {
 
 // A data output switched off in the middle of a telegram cuts it: the fibre sees Dark at
 // that moment (line contract: a new condition before burst.end() ends the burst).
-TEST(TxdOutputs, SwitchingOffMidTelegramCutsTheBurst) {
+TEST(serial_TxdOutputs, SwitchingOffMidTelegramCutsTheBurst) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();
@@ -126,7 +126,7 @@ TEST(TxdOutputs, SwitchingOffMidTelegramCutsTheBurst) {
 // Delta spec 2.3.3 table, TM0 = 0, TM1 = 1: "TxD1-6 continues signal light"; the test
 // signal overrides data: own telegrams do not reach the fibre (IDLE still shows that the
 // transmitter sends, documented decision).
-TEST(TestGenerator, ContinuousLightFromThePinsOverridesData) {
+TEST(serial_TestGenerator, ContinuousLightFromThePinsOverridesData) {
   ChipConfig c;
   c.tm0 = false;
   c.tm1 = true;
@@ -146,7 +146,7 @@ TEST(TestGenerator, ContinuousLightFromThePinsOverridesData) {
 // Coding for this control bits does not change": TMODE2 = 1 with TMODE0 = 1, TMODE1 = 0
 // is the zero bit stream (TM0 = 1, TM1 = 0 row); with TMODE1 = 1 it is continuous light;
 // with both 0 no test mode.
-TEST(TestGenerator, TmodeBitsSelectZeroBitsLightOrNone) {
+TEST(serial_TestGenerator, TmodeBitsSelectZeroBitsLightOrNone) {
   SerialBench b;
   const Time t = b.period();
   b.light_up(kTmode2 | kTmode0);
@@ -161,14 +161,14 @@ TEST(TestGenerator, TmodeBitsSelectZeroBitsLightOrNone) {
 }
 
 // TXLIGHT = 0 switches the optical transmitter off: no test light either (decision).
-TEST(TestGenerator, TransmitterOffStaysDarkInTestMode) {
+TEST(serial_TestGenerator, TransmitterOffStaysDarkInTestMode) {
   SerialBench b;
   b.chip->reg_write(kSerCtrl, static_cast<std::uint16_t>(kTxoe1 | kTmode2 | kTmode1));
   EXPECT_EQ(b.txd1.last().condition, LineCondition::Dark);
 }
 
 // Test mode switched by the pins while running (TMODE2 = 0): the generator follows them.
-TEST(TestGenerator, FollowsTheTmPinsWhileRunning) {
+TEST(serial_TestGenerator, FollowsTheTmPinsWhileRunning) {
   SerialBench b;
   b.light_up();
   b.chip->drive(Pin::TM0, Level::Low);  // TM0 = 0, TM1 = 1: continuous light

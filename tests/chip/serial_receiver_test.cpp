@@ -108,7 +108,7 @@ TEST_P(ReceiveAt, EventsComeAtTheirExactTimes) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Rates, ReceiveAt,
+INSTANTIATE_TEST_SUITE_P(serial, ReceiveAt,
                          ::testing::Values(RateAndMclk{2, 16'000'000}, RateAndMclk{4, 32'000'000},
                                            RateAndMclk{8, 40'000'000}, RateAndMclk{16, 32'000'000},
                                            RateAndMclk{16, 64'000'000}),
@@ -118,7 +118,7 @@ INSTANTIATE_TEST_SUITE_P(Rates, ReceiveAt,
                          });
 
 // Register table RECACT: "Receiver is inside a telegram (RECACTN pin low)".
-TEST(Receiver, RecactBitFollowsThePin) {
+TEST(serial_Receiver, RecactBitFollowsThePin) {
   SerialBench b;
   const Time t = b.period();
   const auto bits = telegram_bits(0x05, kData);
@@ -134,7 +134,7 @@ TEST(Receiver, RecactBitFollowsThePin) {
 // Line contract: a change before burst.end() cuts the burst; the receiver reports the
 // frame open at the cut as an error that ends at the cut (serial_unit.hpp, end "or where
 // the error cut it"), and RECACTN goes high there.
-TEST(Receiver, ACutTelegramIsReportedAsAnErrorEndingAtTheCut) {
+TEST(serial_Receiver, ACutTelegramIsReportedAsAnErrorEndingAtTheCut) {
   SerialBench b;
   Events ev(b);
   const Time t = b.period();
@@ -154,7 +154,7 @@ TEST(Receiver, ACutTelegramIsReportedAsAnErrorEndingAtTheCut) {
 
 // A new telegram that cuts the one before (the repeater inserting its own): the first is
 // an error, the second decodes whole; RECACTN stays low across the seam.
-TEST(Receiver, ABurstCutByTheNextOne) {
+TEST(serial_Receiver, ABurstCutByTheNextOne) {
   SerialBench b;
   Events ev(b);
   PinEdges recactn(b, Pin::RECACTN);
@@ -177,7 +177,7 @@ TEST(Receiver, ABurstCutByTheNextOne) {
 
 // A cut before the address byte is complete: no start event, and the flag-only fragment
 // is no frame at all.
-TEST(Receiver, ACutInTheOpeningFlagLeavesNothing) {
+TEST(serial_Receiver, ACutInTheOpeningFlagLeavesNothing) {
   SerialBench b;
   Events ev(b);
   const Time t = b.period();
@@ -191,7 +191,7 @@ TEST(Receiver, ACutInTheOpeningFlagLeavesNothing) {
 
 // Brief: "A burst at a bit period different from the receiver's rate is distorted:
 // nothing decoded" (RDIST: line_monitor_test).
-TEST(Receiver, ABurstAtAnotherRateDecodesNothing) {
+TEST(serial_Receiver, ABurstAtAnotherRateDecodesNothing) {
   SerialBench b;  // 16 Mbit/s
   Events ev(b);
   b.unit.rxd().line_burst(LineBurst{0, bit_period_of(8), telegram_bits(0x05, kData)});
@@ -203,7 +203,7 @@ TEST(Receiver, ABurstAtAnotherRateDecodesNothing) {
 
 // line.hpp: "`at` / `burst.start` may lie in the future of the scheduler's now": the
 // receiver takes such a change when its time comes.
-TEST(Receiver, ChangesAnnouncedForTheFutureAreTakenWhenTheyHappen) {
+TEST(serial_Receiver, ChangesAnnouncedForTheFutureAreTakenWhenTheyHappen) {
   SerialBench b;
   Events ev(b);
   PinEdges recactn(b, Pin::RECACTN);
@@ -220,7 +220,7 @@ TEST(Receiver, ChangesAnnouncedForTheFutureAreTakenWhenTheyHappen) {
 }
 
 // Bad input to the line contract: clear exceptions, never UB.
-TEST(Receiver, RefusesMalformedOrOutOfOrderChanges) {
+TEST(serial_Receiver, RefusesMalformedOrOutOfOrderChanges) {
   SerialBench b;
   const Time t = b.period();
   LineListener& rxd = b.unit.rxd();
@@ -237,7 +237,7 @@ TEST(Receiver, RefusesMalformedOrOutOfOrderChanges) {
 
 // Decisions (line_decode_memo.hpp): bits shared by every hop are decoded once; a changed
 // copy is decoded again; memoization does not change what is reported.
-TEST(Receiver, DecodingIsMemoizedPerSharedBitsObject) {
+TEST(serial_Receiver, DecodingIsMemoizedPerSharedBitsObject) {
   sim::Scheduler scheduler;
   Chip a(scheduler, ChipConfig{});
   Chip c(scheduler, ChipConfig{});
@@ -268,7 +268,7 @@ TEST(Receiver, DecodingIsMemoizedPerSharedBitsObject) {
 
 // Several frames in one burst (e.g. back-to-back telegrams a test builds as one): each is
 // reported with its own times.
-TEST(Receiver, EveryFrameOfABurstIsReported) {
+TEST(serial_Receiver, EveryFrameOfABurstIsReported) {
   SerialBench b;
   Events ev(b);
   const Time t = b.period();

@@ -60,11 +60,11 @@ TEST_P(RepeatAt, TelegramsLeaveTwoBitTimesLaterOnTheSclkGrid) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Rates, RepeatAt, ::testing::Values(2, 4, 8, 16),
+INSTANTIATE_TEST_SUITE_P(serial, RepeatAt, ::testing::Values(2, 4, 8, 16),
                          [](const auto& p) { return std::to_string(p.param) + "Mbit"; });
 
 // Conditions are repeated with the same delay: a dark input makes a dark output.
-TEST(Repeater, ConditionsFollowWithTheSameDelay) {
+TEST(serial_Repeater, ConditionsFollowWithTheSameDelay) {
   Repeating b;
   const Time t = b.period();
   b.unit.rxd().line_condition(1000 * t, LineCondition::Idle, t);
@@ -80,7 +80,7 @@ TEST(Repeater, ConditionsFollowWithTheSameDelay) {
 }
 
 // REPON = 0: only own telegrams leave; the line carries the own idle fill.
-TEST(Repeater, OffPassesNothingOn) {
+TEST(serial_Repeater, OffPassesNothingOn) {
   SerialBench b;  // REPON cleared by the bench
   b.light_up();
   const Time t = b.period();
@@ -94,7 +94,7 @@ TEST(Repeater, OffPassesNothingOn) {
 // Own telegram wins (decision): a repeated telegram still going when the own one begins is
 // cut there; one arriving while the own is sent is not passed on at all; afterwards the
 // line again follows RxD.
-TEST(Repeater, OwnTelegramIsInsertedAndWins) {
+TEST(serial_Repeater, OwnTelegramIsInsertedAndWins) {
   Repeating b;
   const Time t = b.period();
   const auto repeated = telegram_bits(0x31, kData);
@@ -121,7 +121,7 @@ TEST(Repeater, OwnTelegramIsInsertedAndWins) {
 
 // An upstream break under the own telegram: once the own telegram is out, the line shows
 // what RxD carries (dark), so the break travels on.
-TEST(Repeater, AfterTheOwnTelegramTheLineShowsTheReceivedCondition) {
+TEST(serial_Repeater, AfterTheOwnTelegramTheLineShowsTheReceivedCondition) {
   Repeating b;
   const Time t = b.period();
   b.unit.rxd().line_condition(0, LineCondition::Idle, t);
@@ -134,7 +134,7 @@ TEST(Repeater, AfterTheOwnTelegramTheLineShowsTheReceivedCondition) {
 
 // REPON written while running: on takes up the received condition at once; off returns the
 // line to the own idle fill.
-TEST(Repeater, SwitchingReponWhileRunning) {
+TEST(serial_Repeater, SwitchingReponWhileRunning) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();

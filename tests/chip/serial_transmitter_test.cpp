@@ -73,12 +73,12 @@ TEST_P(TransmitAtRate, BurstStartAndEndArePicosecondExact) {
   EXPECT_EQ(*bursts[0].bits, *telegram_bits(0x3F, kData, !bursts[0].bits->level(0)));
 }
 
-INSTANTIATE_TEST_SUITE_P(Rates, TransmitAtRate, ::testing::Values(2, 4, 8, 16),
+INSTANTIATE_TEST_SUITE_P(serial, TransmitAtRate, ::testing::Values(2, 4, 8, 16),
                          [](const auto& p) { return std::to_string(p.param) + "Mbit"; });
 
 // Project decision (serial_unit.hpp, send): the transmitter is clocked by TxC, whose
 // edges are at k * t_bit; a start between two edges waits for the next one.
-TEST(Transmitter, StartBetweenTxcEdgesWaitsForTheNextEdge) {
+TEST(serial_Transmitter, StartBetweenTxcEdgesWaitsForTheNextEdge) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();
@@ -94,7 +94,7 @@ TEST(Transmitter, StartBetweenTxcEdgesWaitsForTheNextEdge) {
 // Datasheet Table 1, IDLE: "Transmitter active, active low. When transmitting own data
 // IDLE is 0." Low from the opening flag's first bit to the closing flag's end; back-to-
 // back telegrams keep it low without a gap.
-TEST(Transmitter, IdleIsLowExactlyWhileOwnDataIsSent) {
+TEST(serial_Transmitter, IdleIsLowExactlyWhileOwnDataIsSent) {
   SerialBench b;
   b.light_up();
   PinEdges idle(b, Pin::IDLE);
@@ -111,7 +111,7 @@ TEST(Transmitter, IdleIsLowExactlyWhileOwnDataIsSent) {
 
 // serial_unit.hpp, send(): overlapping the own previous telegram, a start in the past, a
 // chip in reset and stopped clocks are refused with clear exceptions.
-TEST(Transmitter, RefusesOverlapPastStartResetAndStoppedClocks) {
+TEST(serial_Transmitter, RefusesOverlapPastStartResetAndStoppedClocks) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();
@@ -129,7 +129,7 @@ TEST(Transmitter, RefusesOverlapPastStartResetAndStoppedClocks) {
 }
 
 // A reset drops telegrams not yet sent (and ends one being sent): IDLE goes high.
-TEST(Transmitter, ResetDropsPendingTelegrams) {
+TEST(serial_Transmitter, ResetDropsPendingTelegrams) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();
@@ -146,7 +146,7 @@ TEST(Transmitter, ResetDropsPendingTelegrams) {
 // Facts §1: idle fill "changes level once every 8 bit times"; the level is carried on from
 // telegram to telegram, so the first bit of each burst (the opening flag's 0, a level
 // change) follows from the last bit before it and the fill bits in between.
-TEST(Transmitter, LineLevelIsCarriedOnThroughTheIdleFill) {
+TEST(serial_Transmitter, LineLevelIsCarriedOnThroughTheIdleFill) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();
@@ -167,7 +167,7 @@ TEST(Transmitter, LineLevelIsCarriedOnThroughTheIdleFill) {
 
 // Facts §1 idle fill between telegrams: the line listener hears Idle at the bit rate once,
 // and then only bursts (the line returns to idle at each burst's end by contract).
-TEST(Transmitter, TheLineIdlesBetweenTelegramsWithoutPerTelegramConditions) {
+TEST(serial_Transmitter, TheLineIdlesBetweenTelegramsWithoutPerTelegramConditions) {
   SerialBench b;
   b.light_up();
   const Time t = b.period();
