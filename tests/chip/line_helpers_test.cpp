@@ -15,6 +15,7 @@
 namespace sercon::chip {
 namespace {
 
+// burst_duration() without encoding: the same bit count as wire::LineEncoder writes.
 TEST(serial_LineLength, EqualsTheEncodersOutputForRandomTelegrams) {
   std::mt19937 rng(7);
   for (int i = 0; i < 2000; ++i) {
@@ -27,6 +28,8 @@ TEST(serial_LineLength, EqualsTheEncodersOutputForRandomTelegrams) {
   }
 }
 
+// The start event comes once the address byte is in (serial_unit.hpp): a 0 stuffed inside
+// the address delays it, one stuffed after its last bit does not.
 TEST(serial_LineLength, AddressEndCountsStuffingInsideTheAddressOnly) {
   EXPECT_EQ(address_end_bit(0x00), 16u);
   EXPECT_EQ(address_end_bit(0x1F), 17u);  // 1 1 1 1 1 (0) 0 0 0
@@ -34,6 +37,7 @@ TEST(serial_LineLength, AddressEndCountsStuffingInsideTheAddressOnly) {
   EXPECT_EQ(address_end_bit(0xFF), 17u);  // 1 1 1 1 1 (0) 1 1 1
 }
 
+// The line monitor counts a burst's edges (decision: bit 0 is an edge) word by word.
 TEST(serial_LineEdges, CountAndFindMatchTheSlowWay) {
   std::mt19937 rng(11);
   for (int i = 0; i < 200; ++i) {

@@ -31,6 +31,7 @@ std::vector<std::shared_ptr<const wire::LineBits>> run(
   return out;
 }
 
+// Brief / docs "Fibre": "same seed → same errors"; another seed, other errors.
 TEST(BitErrors, SameSeedSameErrorsOtherSeedOtherErrors) {
   const auto bits = telegram_bits(7, kData);
   const auto a = run(1e-3, 42, 500, bits);

@@ -24,6 +24,8 @@ using testing::telegram_bits;
 
 const std::vector<std::uint8_t> kData = {0x10, 0x20, 0x30, 0x40};
 
+// Decision (docs "Fibre"): delay = round(length x ps per metre), 5 ns/m by default; a
+// negative or non-finite length is refused.
 TEST(Fibre, DelayIsLengthTimesDelayPerMetre) {
   sim::Scheduler s;
   EXPECT_EQ(Fibre(s, 12.5).delay(), 62'500);  // 5 ns/m default
@@ -62,6 +64,7 @@ TEST(Fibre, DeliversEachChangeAtTheFarEndWhenItHappens) {
   EXPECT_EQ(far.events[3].condition, LineCondition::Dark);
 }
 
+// Line contract (line.hpp): "Calls come in time order per line"; bad input is refused.
 TEST(Fibre, RefusesChangesOutOfOrderOrInThePast) {
   sim::Scheduler s;
   Fibre f(s, 1.0);

@@ -207,6 +207,8 @@ TEST(Ring, ASlaveAtAnotherRateSeesDistortionAndStillRepeats) {
   EXPECT_FALSE(ring.master().reg_read(0x02) & (1u << 12));
 }
 
+// Facts §1: slaves have addresses 1..254, so a ring has 1..254 slaves; one fibre length per
+// fibre; chip configs are checked by the chip.
 TEST(Ring, RefusesImpossibleRings) {
   sim::Scheduler s;
   EXPECT_THROW(Ring(s, ChipConfig{}, ChipConfig{}, 0), std::invalid_argument);

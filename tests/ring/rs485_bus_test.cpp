@@ -48,6 +48,8 @@ struct BusBench {
   std::vector<std::unique_ptr<Ear>> ears;
 };
 
+// Decisions (rs485_bus.hpp): every other node hears a telegram after the bus delay, as the
+// same bits; the sender does not hear itself; the bus falls silent (Dark) after it.
 TEST(Rs485Bus, ATelegramReachesEveryOtherNodeAfterTheDelay) {
   BusBench b;
   const Time t = b.unit(0).bit_period();
@@ -117,6 +119,7 @@ TEST(Rs485Bus, ASenderSwitchedOffMidTelegramCutsIt) {
   EXPECT_EQ(b.ear(1).heard[0].end, 130 * t + kDelay);
 }
 
+// Line contract (line.hpp): time order per line, bursts with bits; a negative delay.
 TEST(Rs485Bus, RefusesBadInput) {
   sim::Scheduler s;
   EXPECT_THROW(Rs485Bus(s, -1), std::invalid_argument);
