@@ -54,17 +54,29 @@ std::vector<std::string> data_entries(const ZipArchive& zip, const std::string& 
 // Packs one bit of every `unitsize`-byte little-endian sample.
 class ChannelPacker {
  public:
-  ChannelPacker(unsigned unitsize, unsigned bit, SrChannel& out)
+  ChannelPacker(unsigned unitsize, unsigned bit, std::uint64_t max_samples, SrChannel& out)
       : unitsize_(unitsize),
         byte_(bit / 8),
         mask_(static_cast<std::uint8_t>(1U << (bit % 8))),
+        max_samples_(max_samples),
         out_(out) {}
 
-  void add(std::string_view block) {
+  // Set when the data held more than max_samples samples; the rest was not read.
+  bool too_long() const { return too_long_; }
+
+  // False once the data holds more than max_samples samples.
+  bool add(std::string_view block) {
     for (char c : block) {
-      if (offset_ == byte_) push((static_cast<std::uint8_t>(c) & mask_) != 0);
+      if (offset_ == byte_) {
+        if (out_.sample_count == max_samples_) {
+          too_long_ = true;
+          return false;
+        }
+        push((static_cast<std::uint8_t>(c) & mask_) != 0);
+      }
       if (++offset_ == unitsize_) offset_ = 0;
     }
+    return true;
   }
 
   bool partial_sample() const { return offset_ != 0; }
@@ -81,6 +93,8 @@ class ChannelPacker {
   unsigned unitsize_;
   unsigned byte_;
   std::uint8_t mask_;
+  std::uint64_t max_samples_;
+  bool too_long_ = false;
   SrChannel& out_;
   unsigned offset_ = 0;
   bool seen_low_ = false;
@@ -89,7 +103,8 @@ class ChannelPacker {
 
 }  // namespace
 
-SrChannel read_sr_file(const std::filesystem::path& file, std::string_view signal) {
+SrChannel read_sr_file(const std::filesystem::path& file, std::string_view signal,
+                       std::uint64_t max_samples) {
   check_readable_file(file);
   const std::string source = file.string();
   const ZipArchive zip(file);
@@ -123,9 +138,14 @@ SrChannel read_sr_file(const std::filesystem::path& file, std::string_view signa
     throw CaptureError(source + ": no logic data ('" + meta.capturefile + "-1' or '" +
                        meta.capturefile + "') in the session");
   }
-  ChannelPacker packer(meta.unitsize, probe.number - 1, channel);
+  ChannelPacker packer(meta.unitsize, probe.number - 1, max_samples, channel);
   for (const std::string& entry : entries) {
-    zip.stream(entry, [&](std::string_view block) { packer.add(block); });
+    zip.stream(entry, [&](std::string_view block) { return packer.add(block); });
+    if (packer.too_long()) {
+      throw CaptureError(source + ": the logic data holds more than " +
+                         std::to_string(max_samples) +
+                         " samples, the most sercon reads from one session");
+    }
   }
   if (packer.partial_sample()) {
     throw CaptureError(source + ": the logic data ends inside a sample (truncated; " +

@@ -46,12 +46,13 @@ std::string ZipArchive::read_small(const std::string& entry, std::size_t max_siz
                          std::to_string(max_size) + " bytes");
     }
     out += block;
+    return true;
   });
   return out;
 }
 
 void ZipArchive::stream(const std::string& entry,
-                        const std::function<void(std::string_view block)>& sink) const {
+                        const std::function<bool(std::string_view block)>& sink) const {
   ZipFile file(zip_fopen(archive_, entry.c_str(), 0));
   if (!file) {
     throw CaptureError(source_ + ": cannot open entry '" + entry + "': " + zip_strerror(archive_));
@@ -63,8 +64,7 @@ void ZipArchive::stream(const std::string& entry,
       throw CaptureError(source_ + ": cannot read entry '" + entry +
                          "': " + zip_file_strerror(file.get()));
     }
-    if (n == 0) return;
-    sink(std::string_view(buffer.data(), static_cast<std::size_t>(n)));
+    if (n == 0 || !sink(std::string_view(buffer.data(), static_cast<std::size_t>(n)))) return;
   }
 }
 

@@ -23,9 +23,9 @@ class ZipArchive {
   // The whole entry, refused when it is larger than `max_size` bytes.
   std::string read_small(const std::string& entry, std::size_t max_size) const;
 
-  // Hands the entry to `sink` block by block.
+  // Hands the entry to `sink` block by block, until the end or until `sink` returns false.
   void stream(const std::string& entry,
-              const std::function<void(std::string_view block)>& sink) const;
+              const std::function<bool(std::string_view block)>& sink) const;
 
  private:
   std::string source_;

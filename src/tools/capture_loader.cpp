@@ -19,6 +19,12 @@ std::string ns_text(std::int64_t ps) {
   return whole + "." + digits + " ns";
 }
 
+// 1e12 / rate ps as ns, to the picosecond: "125 ns", "41.667 ns" (24 MHz, rounded).
+std::string sample_period_text(std::uint64_t rate_hz) {
+  const std::uint64_t ps_per_second = 1'000'000'000'000;
+  return ns_text(static_cast<std::int64_t>((ps_per_second + rate_hz / 2) / rate_hz));
+}
+
 wire::RecoveryOptions recovery_options(const std::optional<std::int64_t>& period_ps) {
   wire::RecoveryOptions options;
   options.bit_period_ps = period_ps;
@@ -64,16 +70,21 @@ void load_sr(const DecodeOptions& options, const std::optional<std::int64_t>& pe
              LoadedCapture& out) {
   const capture::SrChannel channel = capture::read_sr_file(options.file, options.signal);
   out.signal = channel.name;
-  // The receiver needs at least two samples per bit to see every level between edges.
-  if (period_ps && 2 * channel.sample_period_ps > *period_ps) {
+  // The receiver needs at least two samples per bit to see every level between edges:
+  // 2 * 1e12 / rate <= period, in integers (rate <= 1 THz, period <= 500 000 ps).
+  if (period_ps &&
+      2'000'000'000'000 > static_cast<std::uint64_t>(*period_ps) * channel.samplerate_hz) {
     throw InputError("impossible bit rate " + describe_bit_period(*period_ps) + " for " +
                      options.file.string() + ": it is sampled every " +
-                     ns_text(channel.sample_period_ps) + ", and decoding needs at least " +
+                     sample_period_text(channel.samplerate_hz) + ", and decoding needs at least " +
                      "2 samples per bit (" + ns_text(*period_ps) + ")");
   }
+  // The exact rate, not a period rounded to the picosecond: a 24 MHz capture keeps its
+  // times to the end (docs/wire.md).
   out.line = recover("sigrok channel '" + out.signal + "'", period_ps.has_value(), [&] {
     return wire::recover_from_samples(channel.samples, channel.sample_count,
-                                      channel.sample_period_ps, 0, recovery_options(period_ps));
+                                      wire::SampleRate{channel.samplerate_hz}, 0,
+                                      recovery_options(period_ps));
   });
 }
 

@@ -5,27 +5,43 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "dpll.hpp"
+#include "sample_clock.hpp"
 
 namespace sercon::wire {
 namespace {
 
 constexpr std::size_t kDetectEdges = std::size_t{1} << 20;  // enough for the histogram
-constexpr std::int64_t kMaxBits = std::int64_t{1} << 34;    // 2 GiB of packed line bits
+// From samples the line holds at most half as many bits as the caller's samples, so this
+// only guards the arithmetic. An edge list can span any time with a few edges (a VCD of 100
+// bytes with a 100 s timescale), so its line is held to 2^31 bits (256 MiB packed: 134 s at
+// 16 Mbit/s, 18 min at 2 Mbit/s) rather than allocating gigabytes for it.
+constexpr std::int64_t kMaxSampleBits = std::int64_t{1} << 34;  // 2 GiB of packed line bits
+constexpr std::int64_t kMaxEdgeBits = std::int64_t{1} << 31;    // 256 MiB of packed line bits
 
 // The capture must fit the arithmetic and the memory: a clear error instead of overflow.
-void check_span(std::int64_t start_ps, std::int64_t end_ps, std::int64_t bit_period) {
+void check_span(std::int64_t start_ps, std::int64_t end_ps, std::int64_t bit_period,
+                std::int64_t max_bits) {
   std::int64_t span = 0;
-  if (__builtin_sub_overflow(end_ps, start_ps, &span) || span / bit_period > kMaxBits)
+  if (__builtin_sub_overflow(end_ps, start_ps, &span) || span / bit_period > max_bits)
     throw RecoveryError(fmt::format(
         "clock recovery: a capture from {} ps to {} ps holds more than {} bits at {} ps per "
-        "bit; too long",
-        start_ps, end_ps, kMaxBits, bit_period));
+        "bit; too long (is the time unit or the bit rate wrong?)",
+        start_ps, end_ps, max_bits, bit_period));
+}
+
+constexpr std::uint64_t kPsPerSecond = 1'000'000'000'000;
+
+// "7812 ps", "41666.667 ps": a sample period of num / den ps for messages.
+std::string sample_period_text(std::uint64_t num, std::uint64_t den) {
+  if (den == 1) return fmt::format("{} ps", num);
+  return fmt::format("{:.3f} ps", static_cast<double>(num) / static_cast<double>(den));
 }
 
 std::int64_t checked_period(std::int64_t period) {
@@ -85,12 +101,12 @@ RecoveredLine recover_from_edges(bool initial_level, std::span<const Edge> edges
       if (times[i] > times[i - 1]) intervals.push_back(times[i] - times[i - 1]);
     out.bit_period_ps = detect_bit_period(intervals);
   }
-  check_span(start_ps, end_ps, out.bit_period_ps);
+  check_span(start_ps, end_ps, out.bit_period_ps, kMaxEdgeBits);
   out.bits.reserve(static_cast<std::size_t>((end_ps - start_ps) / out.bit_period_ps) + 64);
   out.anchors.reserve(times.size() + 1);
-  detail::Dpll dpll(out, start_ps, out.bit_period_ps, initial_level);
-  for (std::int64_t t : times) dpll.edge(t);
-  dpll.finish(end_ps);
+  detail::Dpll dpll(out, out.bit_period_ps, initial_level);
+  for (std::int64_t t : times) dpll.edge(detail::tick_of_ps(t, start_ps, out.bit_period_ps), t);
+  dpll.finish(detail::tick_of_ps(end_ps, start_ps, out.bit_period_ps));
   return out;
 }
 
@@ -119,43 +135,42 @@ void for_each_change(std::span<const std::uint64_t> words, std::size_t sample_co
   }
 }
 
-}  // namespace
-
-RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::size_t sample_count,
-                                   std::int64_t sample_period_ps, std::int64_t start_ps,
-                                   const RecoveryOptions& options) {
-  if (sample_period_ps <= 0)
-    throw RecoveryError(
-        fmt::format("clock recovery: sample period {} ps must be positive", sample_period_ps));
+// The sample-based front end for a rational sample period of num / den ps (reduced).
+RecoveredLine recover_samples(std::span<const std::uint64_t> words, std::size_t sample_count,
+                              std::uint64_t num, std::uint64_t den, std::int64_t start_ps,
+                              const RecoveryOptions& options) {
   if (sample_count == 0) throw RecoveryError("clock recovery: the capture has no samples");
   if (sample_count / 64 > words.size() ||
       (sample_count / 64 == words.size() && sample_count % 64 != 0))
     throw RecoveryError(fmt::format("clock recovery: {} samples do not fit in {} words",
                                     sample_count, words.size()));
-  std::int64_t duration = 0;
-  std::int64_t end_ps = 0;
-  if (sample_count > static_cast<std::size_t>(INT64_MAX) ||
-      __builtin_mul_overflow(static_cast<std::int64_t>(sample_count), sample_period_ps,
-                             &duration) ||
-      __builtin_add_overflow(start_ps, duration, &end_ps))
+  // The capture lasts sample_count * num / den ps; it must fit the time axis.
+  const detail::Wide duration = detail::Wide{sample_count} * num / den;
+  const detail::Wide room =
+      static_cast<detail::Wide>(static_cast<std::uint64_t>(INT64_MAX) -
+                                static_cast<std::uint64_t>(std::max<std::int64_t>(start_ps, 0)));
+  if (duration > room)
     throw RecoveryError(
-        fmt::format("clock recovery: {} samples of {} ps from {} ps run past the time range",
-                    sample_count, sample_period_ps, start_ps));
-  const std::int64_t half = sample_period_ps / 2;
-  // A change between samples k-1 and k happened somewhere in between: take the middle.
-  const auto time_of = [&](std::size_t k) {
-    return start_ps + static_cast<std::int64_t>(k) * sample_period_ps - half;
-  };
+        fmt::format("clock recovery: {} samples of {} from {} ps run past the time range",
+                    sample_count, sample_period_text(num, den), start_ps));
 
   RecoveredLine out;
   if (options.bit_period_ps) {
     out.bit_period_ps = checked_period(*options.bit_period_ps);
   } else {
+    // Intervals for the histogram: exact for a whole-ps period, else rounded to the ps
+    // (detection is a statistical estimate; the DPLL below uses exact times).
+    const double ps_per_sample = static_cast<double>(num) / static_cast<double>(den);
     std::vector<std::int64_t> intervals;
     std::size_t last = 0;
     bool any = false;
     for_each_change(words, sample_count, [&](std::size_t k) {
-      if (any) intervals.push_back(static_cast<std::int64_t>(k - last) * sample_period_ps);
+      if (any) {
+        const std::size_t n = k - last;
+        intervals.push_back(
+            den == 1 ? static_cast<std::int64_t>(n * num)
+                     : static_cast<std::int64_t>(static_cast<double>(n) * ps_per_sample + 0.5));
+      }
       last = k;
       any = true;
       return intervals.size() < kDetectEdges;
@@ -166,19 +181,23 @@ RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::si
           sample_count));
     out.bit_period_ps = detect_bit_period(intervals);
   }
-  if (out.bit_period_ps < 2 * sample_period_ps)
-    throw RecoveryError(fmt::format(
-        "clock recovery: bit period {} ps is shorter than 2 sample periods ({} ps each); "
-        "the capture cannot resolve this rate",
-        out.bit_period_ps, sample_period_ps));
+  if (detail::Wide{static_cast<std::uint64_t>(out.bit_period_ps)} * den < 2 * detail::Wide{num})
+    throw RecoveryError(
+        fmt::format("clock recovery: bit period {} ps is shorter than 2 sample periods ({} each); "
+                    "the capture cannot resolve this rate",
+                    out.bit_period_ps, sample_period_text(num, den)));
 
-  end_ps -= half;  // time_of(sample_count): the last sample covers up to here
-  check_span(start_ps, end_ps, out.bit_period_ps);
+  const detail::SampleClock clock(num, den, start_ps, out.bit_period_ps);
+  // The last sample covers up to the midpoint after it, half-sample 2 * sample_count - 1.
+  const std::uint64_t end_half = 2 * std::uint64_t{sample_count} - 1;
+  const std::int64_t end_ps = clock.time_ps(end_half);
+  check_span(start_ps, end_ps, out.bit_period_ps, kMaxSampleBits);
   out.bits.reserve(static_cast<std::size_t>((end_ps - start_ps) / out.bit_period_ps) + 64);
-  detail::Dpll dpll(out, start_ps, out.bit_period_ps, (words[0] & 1u) != 0);
+  detail::Dpll dpll(out, out.bit_period_ps, (words[0] & 1u) != 0);
   bool any = false;
   for_each_change(words, sample_count, [&](std::size_t k) {
-    dpll.edge(time_of(k));
+    const std::uint64_t m = 2 * std::uint64_t{k} - 1;
+    dpll.edge(clock.tick(m), clock.time_ps(m));
     any = true;
     return true;
   });
@@ -186,8 +205,29 @@ RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::si
     throw RecoveryError(fmt::format(
         "clock recovery: the capture has no edges in {} samples, so there is no bit clock",
         sample_count));
-  dpll.finish(end_ps);
+  dpll.finish(clock.tick(end_half));
   return out;
+}
+
+}  // namespace
+
+RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::size_t sample_count,
+                                   std::int64_t sample_period_ps, std::int64_t start_ps,
+                                   const RecoveryOptions& options) {
+  if (sample_period_ps <= 0)
+    throw RecoveryError(
+        fmt::format("clock recovery: sample period {} ps must be positive", sample_period_ps));
+  return recover_samples(words, sample_count, static_cast<std::uint64_t>(sample_period_ps), 1,
+                         start_ps, options);
+}
+
+RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::size_t sample_count,
+                                   SampleRate rate, std::int64_t start_ps,
+                                   const RecoveryOptions& options) {
+  if (rate.hz == 0) throw RecoveryError("clock recovery: sample rate 0 Hz must be positive");
+  // 1e12 / rate ps per sample, as a reduced fraction: 24 MHz is 125000 / 3 ps.
+  const std::uint64_t g = std::gcd(kPsPerSecond, rate.hz);
+  return recover_samples(words, sample_count, kPsPerSecond / g, rate.hz / g, start_ps, options);
 }
 
 }  // namespace sercon::wire

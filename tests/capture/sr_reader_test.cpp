@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <optional>
+#include <string>
+
 #include "sercon/capture/capture_error.hpp"
 #include "test_files.hpp"
 
@@ -135,6 +139,79 @@ TEST(SrReader, BrokenFilesAreNamed) {
     const std::string message = error_of(dir / c.name);
     EXPECT_NE(message.find(c.expected), std::string::npos) << c.name << ": " << message;
     EXPECT_NE(message.find(c.name), std::string::npos) << c.name << ": " << message;
+  }
+}
+
+// Brief (fuzzing: cap sizes): the samples read from one session are capped (kMaxSrSamples,
+// 2^33), since deflated data can expand a thousandfold; past the cap a clear error, and
+// nothing more is read. Checked here with a small cap.
+TEST(SrReader, MoreSamplesThanTheCapIsAClearError) {
+  TempDir dir;
+  testing::write_sr(dir / "long.sr", testing::sr_metadata("1 MHz", {"D0"}),
+                    pattern_samples(5000, 1, 0), 777);
+  EXPECT_EQ(read_sr_file(dir / "long.sr", "", 5000).sample_count, 5000U);
+  try {
+    read_sr_file(dir / "long.sr", "", 4999);
+    FAIL() << "no error";
+  } catch (const CaptureError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("long.sr: the logic data holds more than 4999 samples"),
+              std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(kMaxSrSamples, std::uint64_t{1} << 33);
+}
+
+// Makes the local and central headers of `entry` claim `uncompressed` bytes, and
+// `compressed` bytes too when given (zip format: local header PK\3\4 with the sizes at
+// +18/+22 and the name at +30; central header PK\1\2, sizes at +20/+24, name at +46).
+void claim_sizes(std::string& zip, const std::string& entry,
+                 std::optional<std::uint32_t> compressed, std::uint32_t uncompressed) {
+  const auto put = [&](std::size_t at, std::uint32_t v) {
+    for (std::size_t i = 0; i < 4; ++i) zip[at + i] = static_cast<char>((v >> (8 * i)) & 0xFF);
+  };
+  const auto u16 = [&](std::size_t at) {
+    return static_cast<std::size_t>(static_cast<unsigned char>(zip[at])) |
+           static_cast<std::size_t>(static_cast<unsigned char>(zip[at + 1])) << 8;
+  };
+  struct Header {
+    std::string signature;
+    std::size_t sizes, name_length, name;
+  };
+  for (const Header& h : {Header{"PK\3\4", 18, 26, 30}, Header{"PK\1\2", 20, 28, 46}}) {
+    for (std::size_t at = zip.find(h.signature); at != std::string::npos;
+         at = zip.find(h.signature, at + 4)) {
+      if (zip.compare(at + h.name, u16(at + h.name_length), entry) != 0) continue;
+      if (compressed) put(at + h.sizes, *compressed);
+      put(at + h.sizes + 4, uncompressed);
+    }
+  }
+}
+
+// Brief (fuzzing: a zip claiming a huge logic chunk): the reader streams entries in 64 KiB
+// blocks and sizes nothing by what the zip claims. An entry claiming 4 GiB, stored or
+// deflated, its uncompressed size or both sizes, gives either a clear error naming it or
+// its real data; never an allocation of gigabytes.
+TEST(SrReader, AZipClaimingAHugeLogicEntryGivesAnErrorOrItsRealData) {
+  TempDir dir;
+  const std::string meta = testing::sr_metadata("1 MHz", {"D0"});
+  for (bool stored : {true, false}) {
+    for (bool both : {false, true}) {
+      SCOPED_TRACE(std::string(stored ? "stored" : "deflated") + (both ? ", both sizes" : ""));
+      testing::write_zip(
+          dir / "claim.sr",
+          {{"version", "2"}, {"metadata", meta}, {"logic-1-1", pattern_samples(20000, 1, 0)}},
+          stored);
+      std::string zip = testing::read_file(dir / "claim.sr");
+      const std::uint32_t huge = 0xFFFFFFF0;
+      claim_sizes(zip, "logic-1-1", both ? std::optional<std::uint32_t>(huge) : std::nullopt, huge);
+      testing::write_file(dir / "claim.sr", zip);
+      try {
+        expect_pattern(read_sr_file(dir / "claim.sr", ""), 20000);
+      } catch (const CaptureError& e) {
+        EXPECT_NE(std::string(e.what()).find("entry 'logic-1-1'"), std::string::npos) << e.what();
+      }
+    }
   }
 }
 

@@ -39,17 +39,24 @@ std::string read_file(const std::filesystem::path& file) {
 }
 
 void write_zip(const std::filesystem::path& file,
-               const std::vector<std::pair<std::string, std::string>>& entries) {
+               const std::vector<std::pair<std::string, std::string>>& entries, bool stored) {
   int error = 0;
   zip_t* archive = zip_open(file.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
   if (archive == nullptr) throw std::runtime_error("zip_open failed for " + file.string());
   for (const auto& [name, content] : entries) {
     // libzip reads the buffer at zip_close(); the entries outlive it.
     zip_source_t* source = zip_source_buffer(archive, content.data(), content.size(), 0);
-    if (source == nullptr || zip_file_add(archive, name.c_str(), source, ZIP_FL_OVERWRITE) < 0) {
+    const zip_int64_t index =
+        source == nullptr ? -1 : zip_file_add(archive, name.c_str(), source, ZIP_FL_OVERWRITE);
+    if (index < 0) {
       zip_source_free(source);
       zip_discard(archive);
       throw std::runtime_error("zip_file_add failed for " + name);
+    }
+    const zip_int32_t method = stored ? ZIP_CM_STORE : ZIP_CM_DEFLATE;
+    if (zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), method, 0) != 0) {
+      zip_discard(archive);
+      throw std::runtime_error("zip_set_file_compression failed for " + name);
     }
   }
   if (zip_close(archive) != 0) {

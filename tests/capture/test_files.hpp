@@ -31,9 +31,11 @@ class TempDir {
 void write_file(const std::filesystem::path& file, std::string_view content);
 std::string read_file(const std::filesystem::path& file);
 
-// A zip archive holding `entries` (name, content) in order, written with libzip.
+// A zip archive holding `entries` (name, content) in order, written with libzip; deflated,
+// or stored (not compressed) when `stored`.
 void write_zip(const std::filesystem::path& file,
-               const std::vector<std::pair<std::string, std::string>>& entries);
+               const std::vector<std::pair<std::string, std::string>>& entries,
+               bool stored = false);
 
 // `samples_per_bit` samples of each line bit, `unitsize` bytes each (little-endian), the
 // level in bit `bit` and every other bit 0.

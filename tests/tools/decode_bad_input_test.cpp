@@ -110,6 +110,16 @@ TEST_F(DecodeBadInput, RateThatNoSercosRateExplains) {
   expect_failure({path("slow.vcd")}, {"cannot recover the bit clock", "top.rx", "--rate"});
 }
 
+// Found while writing the VCD fuzz target: a VCD of 100 bytes with a 100 s timescale and
+// --rate 16M asked for 16 G line bits (2 GiB, 15 s). Now a clear error, at once.
+TEST_F(DecodeBadInput, VcdSpanningGigabytesOfLineBitsIsRefused) {
+  write_file(dir_ / "huge.vcd",
+             "$timescale 100 s $end\n$var wire 1 ! rx $end\n$enddefinitions $end\n"
+             "#0\n1!\n#5\n0!\n#10\n1!\n");
+  expect_failure({"--rate", "16M", path("huge.vcd")},
+                 {"cannot recover the bit clock", "'rx'", "too long"});
+}
+
 TEST_F(DecodeBadInput, BitsWithoutRate) {
   expect_failure({path("good.bits")}, {"bits format carries no timing", "--rate"});
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "run_sercon.hpp"
+#include "sercon/wire/encoder.hpp"
 #include "test_files.hpp"
 #include "test_lines.hpp"
 
@@ -163,6 +164,30 @@ TEST(DecodeEndToEnd, SigrokSessionWithinOneSample) {
     expect_rows(lines, line, rate.period_ps, static_cast<double>(rate.period_ps) / 10);
     expect_phase_walk_summary(lines.back().at("summary"), rate.period_ps);
   }
+}
+
+// Brief (sample rates that are not a whole number of ps): a 24 MHz session (41 666.67 ps a
+// sample, the fx2lafw logic analyzers' rate) of 0.2 s at 4 Mbit/s. The telegram at the end
+// has the time of its encoder bit position to within one sample; a period rounded to
+// 41 667 ps would put it 1.6 us late.
+TEST(DecodeEndToEnd, SigrokSessionAt24MHzKeepsTimesToTheEnd) {
+  wire::LineEncoder enc(true);
+  enc.idle(32);
+  const std::vector<std::uint8_t> mst{0x04};
+  const std::size_t first = enc.telegram(0xFF, mst).start_bit;
+  enc.idle(800'000);  // 0.2 s of fill
+  const std::size_t last = enc.telegram(0xFF, mst).start_bit;
+  enc.idle(64);
+  TempDir dir;
+  write_sr(dir / "fx2.sr", sr_metadata("24 MHz", {"D0"}), oversample(enc.bits(), 6), 1 << 20);
+  const RunResult r = run_sercon({"decode", "--json", "--rate", "4M", (dir / "fx2.sr").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto lines = json_lines(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  const double sample_ns = 1e9 / 24e6;
+  EXPECT_NEAR(lines[0].at("t_ns").get<double>(), static_cast<double>(first) * 250.0, sample_ns);
+  EXPECT_NEAR(lines[1].at("t_ns").get<double>(), static_cast<double>(last) * 250.0, sample_ns);
+  EXPECT_EQ(lines[1].at("start_bit").get<std::size_t>(), last);
 }
 
 TEST(DecodeEndToEnd, SigrokSessionChannelOfSeveral) {

@@ -5,11 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sercon/wire/decoder.hpp"
@@ -253,6 +256,19 @@ TEST(ClockRecovery, BadEdgeInput) {
             std::string::npos);
 }
 
+// Brief (fuzzing: cap sizes): an edge list can span any time with a few edges (a VCD of
+// 100 bytes with a 100 s timescale); its line is held to 2^31 bits (256 MiB) with a clear
+// error instead of an allocation of gigabytes. 2^31 + a few bits at 16 Mbit/s are refused;
+// the old limit (2^34 bits, 2 GiB) took them.
+TEST(ClockRecovery, EdgeListIsHeldToTwoToTheThirtyOneBits) {
+  const std::int64_t period = 62'500;
+  const std::int64_t end = ((std::int64_t{1} << 31) + 1000) * period;
+  const std::vector<Edge> few = {{end / 3, false}, {end / 2, true}};
+  const std::string message = message_of([&] { recover_from_edges(true, few, 0, end, {period}); });
+  EXPECT_NE(message.find("holds more than 2147483648 bits"), std::string::npos) << message;
+  EXPECT_NE(message.find("too long"), std::string::npos) << message;
+}
+
 // Brief: bad sample input -> RecoveryError naming the problem.
 TEST(ClockRecovery, BadSampleInput) {
   const std::vector<std::uint64_t> flat(4, 0);
@@ -288,6 +304,205 @@ TEST(ClockRecovery, UndersampledCaptureIsRejected) {
   const auto count = static_cast<std::size_t>(end_of(s.line, period) / sample_period);
   const auto words = test::sample_edges(s.line[0], edges, count, sample_period);
   EXPECT_THROW(recover_from_samples(words, count, sample_period), RecoveryError);
+}
+
+// --- Sample rates whose period is not a whole number of picoseconds -------------------
+
+constexpr std::int64_t kPsPerSecond = 1'000'000'000'000;
+
+// One sample period in ps, rounded up: the tolerance "within one sample".
+std::int64_t sample_ps(std::uint64_t rate_hz) {
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(kPsPerSecond) + rate_hz - 1) /
+                                   rate_hz);
+}
+
+// A line of `seconds` at bit period `period`: a CP4 cycle (MST, four 8-byte ATs, a 32-byte
+// MDT) at the start, idle fill, another cycle at the very end. The encoder's frame positions
+// are the reference for times: frame f starts at f.start_bit * period ps.
+struct LongLine {
+  LineBits bits;
+  std::vector<EncodedFrame> frames;
+};
+
+LongLine long_line(std::int64_t period, std::int64_t seconds, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  LineEncoder enc((seed & 1) != 0);
+  LongLine l;
+  const auto cycle = [&](std::uint8_t phase) {
+    l.frames.push_back(enc.telegram(0xFF, std::vector<std::uint8_t>{phase}));
+    enc.idle(24);
+    for (std::uint8_t drive = 1; drive <= 4; ++drive) {
+      const Telegram at = test::random_telegram(rng, 8, 8);
+      l.frames.push_back(enc.telegram(drive, at.data));
+      enc.idle(24);
+    }
+    const Telegram mdt = test::random_telegram(rng, 32, 32);
+    l.frames.push_back(enc.telegram(0xFF, mdt.data));
+  };
+  const auto total = static_cast<std::size_t>(seconds * kPsPerSecond / period);
+  enc.idle(32);
+  cycle(4);
+  enc.idle(total - enc.size() - 1000);
+  cycle(4);
+  enc.idle(total - enc.size());
+  l.bits = enc.take();
+  return l;
+}
+
+// The largest |recovered - expected| start time over the frames, in ps, where expected is
+// the encoder's start bit x period. Also requires the frames themselves to come back.
+std::int64_t worst_time_error(const RecoveredLine& r, const LongLine& l, std::int64_t period) {
+  const auto frames = decode_all(r.bits);
+  EXPECT_EQ(frames.size(), l.frames.size());
+  std::int64_t worst = 0;
+  for (std::size_t i = 0; i < frames.size() && i < l.frames.size(); ++i) {
+    EXPECT_TRUE(frames[i].ok()) << i;
+    EXPECT_EQ(frames[i].start_bit, l.frames[i].start_bit) << i;
+    const std::int64_t expected = static_cast<std::int64_t>(l.frames[i].start_bit) * period;
+    worst = std::max(worst, std::abs(r.time_of_bit(frames[i].start_bit) - expected));
+  }
+  return worst;
+}
+
+// Brief (sample rates that are not a whole number of ps): the cheap fx2lafw logic analyzers
+// sample at 24 MHz (41 666.67 ps), also 12, 48 and 6 MHz. Over 3 s of line the telegram
+// times at the start and at the end equal the encoder's bit positions x bit period to
+// within one sample. A period rounded to whole ps drifts by 0.33 ps a sample, far more
+// than a sample by the end: that is what the rate overload fixes.
+TEST(ClockRecovery, FractionalPicosecondSampleRatesKeepTelegramTimesOverSeconds) {
+  struct Case {
+    std::uint64_t rate_hz;
+    std::int64_t period;  // bit period
+  };
+  const Case cases[] = {
+      {24'000'000, 250'000},  // 4 Mbit/s, 6 samples a bit
+      {12'000'000, 500'000},  // 2 Mbit/s, 6 samples a bit
+      {48'000'000, 125'000},  // 8 Mbit/s, 6 samples a bit
+      {6'000'000, 500'000},   // 2 Mbit/s, 3 samples a bit
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE("rate " + std::to_string(c.rate_hz) + " Hz, bit " + std::to_string(c.period));
+    const LongLine l = long_line(c.period, 3, c.rate_hz);
+    const test::SampledLine s = test::sample_line_at_rate(l.bits, c.period, c.rate_hz);
+    const RecoveredLine r =
+        recover_from_samples(s.words, s.count, SampleRate{c.rate_hz}, 0, {c.period});
+    ASSERT_EQ(r.bits, l.bits);
+    const std::int64_t worst = worst_time_error(r, l, c.period);
+    EXPECT_LE(worst, sample_ps(c.rate_hz));
+    RecordProperty("worst_error_ps_" + std::to_string(c.rate_hz), static_cast<int>(worst));
+
+    // The same samples with the period rounded to whole ps: the last cycle is off by more
+    // than a sample (this is the test's own sensitivity check).
+    const auto rounded = static_cast<std::int64_t>(
+        (static_cast<std::uint64_t>(kPsPerSecond) + c.rate_hz / 2) / c.rate_hz);
+    const RecoveredLine drifting = recover_from_samples(s.words, s.count, rounded, 0, {c.period});
+    ASSERT_EQ(drifting.bits, l.bits);
+    EXPECT_GT(worst_time_error(drifting, l, c.period), 10 * sample_ps(c.rate_hz));
+  }
+}
+
+// Brief: the rate overload gives exactly what the period overload gives when the period
+// is a whole number of ps (64 MHz = 15 625 ps, 40 MHz = 25 000 ps), rate given or
+// detected, with a start offset: the same bits, period and anchors.
+TEST(ClockRecovery, RateOverloadMatchesWholePicosecondPeriod) {
+  for (const auto& [rate_hz, sample] :
+       {std::pair<std::uint64_t, std::int64_t>{64'000'000, 15'625}, {40'000'000, 25'000}}) {
+    const Stream s = make_stream(rate_hz, 4);
+    std::mt19937_64 rng(rate_hz);
+    const std::int64_t period = 250'000;
+    const auto edges = test::jittered_edges(s.line, period, period / 8, rng);
+    const auto count = static_cast<std::size_t>(end_of(s.line, period) / sample);
+    const auto words = test::sample_edges(s.line[0], edges, count, sample);
+    for (bool detect : {false, true}) {
+      RecoveryOptions opt;
+      if (!detect) opt.bit_period_ps = period;
+      const RecoveredLine a = recover_from_samples(words, count, SampleRate{rate_hz}, 777, opt);
+      const RecoveredLine b = recover_from_samples(words, count, sample, 777, opt);
+      ASSERT_EQ(a.bits, b.bits);
+      ASSERT_EQ(a.bits, s.line);
+      EXPECT_EQ(a.bit_period_ps, b.bit_period_ps);
+      ASSERT_EQ(a.anchors.size(), b.anchors.size());
+      for (std::size_t i = 0; i < a.anchors.size(); ++i) {
+        EXPECT_EQ(a.anchors[i].bit, b.anchors[i].bit);
+        EXPECT_EQ(a.anchors[i].time_ps, b.anchors[i].time_ps);
+      }
+    }
+  }
+}
+
+// Delta spec 2.3.1 at fractional-ps sample rates: ±1/8-bit jitter sampled at 128 MHz (16
+// Mbit/s x 8, 7 812.5 ps), 24 MHz (4 Mbit/s x 6) and 48 MHz (8 Mbit/s x 6), rate given and
+// detected: the exact line and every telegram.
+TEST(ClockRecovery, JitteredSamplesAtFractionalPicosecondRates) {
+  for (const auto& [rate_hz, period] : {std::pair<std::uint64_t, std::int64_t>{128'000'000, 62'500},
+                                        {24'000'000, 250'000},
+                                        {48'000'000, 125'000}}) {
+    const Stream s = make_stream(rate_hz + 1, 6);
+    std::mt19937_64 rng(rate_hz);
+    const auto edges = test::jittered_edges(s.line, period, period / 8, rng);
+    const test::SampledLine smp =
+        test::sample_edges_at_rate(s.line[0], edges, end_of(s.line, period), rate_hz);
+    for (bool detect : {false, true}) {
+      RecoveryOptions opt;
+      if (!detect) opt.bit_period_ps = period;
+      const RecoveredLine r =
+          recover_from_samples(smp.words, smp.count, SampleRate{rate_hz}, 0, opt);
+      EXPECT_EQ(r.bit_period_ps, period);
+      ASSERT_EQ(r.bits, s.line) << "rate " << rate_hz << " detect " << detect;
+      expect_telegrams(r.bits, s.telegrams);
+    }
+  }
+}
+
+// Brief (exact rational time): at 999 999 937 Hz (a prime: the period 1000.000063 ps does
+// not reduce) sample times pass 2^64 in the intermediate k * 1e12 after 9.2 M samples;
+// 20 M samples of a 16 Mbit/s line still give the encoder's times to within one sample.
+TEST(ClockRecovery, SampleTimesBeyondSixtyFourBitIntermediatesStayExact) {
+  const std::uint64_t rate_hz = 999'999'937;
+  const std::int64_t period = 62'500;
+  std::mt19937_64 rng(4);
+  LineEncoder enc(true);
+  LongLine line;
+  enc.idle(32);
+  for (int i = 0; i < 3; ++i) {
+    line.frames.push_back(enc.telegram(test::random_telegram(rng, 8, 8)));
+    enc.idle(24);
+  }
+  enc.idle(320'000 - enc.size() - 600);
+  for (int i = 0; i < 3; ++i) {
+    line.frames.push_back(enc.telegram(test::random_telegram(rng, 8, 8)));
+    enc.idle(24);
+  }
+  enc.idle(320'000 - enc.size());
+  line.bits = enc.take();
+  const test::SampledLine s = test::sample_line_at_rate(line.bits, period, rate_hz);
+  ASSERT_GT(s.count, 19'000'000u);
+  const RecoveredLine r = recover_from_samples(s.words, s.count, SampleRate{rate_hz}, 0, {period});
+  ASSERT_EQ(r.bits, line.bits);
+  EXPECT_LE(worst_time_error(r, line, period), sample_ps(rate_hz));
+}
+
+// Brief: bad input to the rate overload -> RecoveryError naming the problem.
+TEST(ClockRecovery, BadSampleRateInput) {
+  const std::vector<std::uint64_t> toggling(4, 0x5555555555555555ull);
+  EXPECT_NE(message_of([&] {
+              recover_from_samples(toggling, 256, SampleRate{0});
+            }).find("sample rate 0 Hz"),
+            std::string::npos);
+  // 16 Mbit/s at 24 MHz: 1.5 samples a bit; the message shows the fractional period.
+  const std::string slow =
+      message_of([&] { recover_from_samples(toggling, 256, SampleRate{24'000'000}, 0, {62'500}); });
+  EXPECT_NE(slow.find("2 sample periods (41666.667 ps each)"), std::string::npos) << slow;
+  // 2^24 samples at 1 Hz are 1.7e19 ps: past the int64 time axis.
+  const std::vector<std::uint64_t> many(std::size_t{1} << 18, 0x5555555555555555ull);
+  EXPECT_NE(message_of([&] {
+              recover_from_samples(many, std::size_t{1} << 24, SampleRate{1}, 0, {500'000});
+            }).find("time range"),
+            std::string::npos);
+  EXPECT_NE(message_of([&] {
+              recover_from_samples(toggling, 257, SampleRate{1'000'000});
+            }).find("do not fit"),
+            std::string::npos);
 }
 
 }  // namespace

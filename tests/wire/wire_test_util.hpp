@@ -2,6 +2,7 @@
 // line, and jittered edges/samples made from line bits.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -67,6 +68,59 @@ inline std::vector<std::uint64_t> sample_edges(bool initial_level, const std::ve
     if (level) words[k / 64] |= std::uint64_t{1} << (k % 64);
   }
   return words;
+}
+
+// Samples of a line given by its edges at an exact sample rate, computed here separately
+// from the library's arithmetic: sample k is taken at k * 1e12 / rate_hz ps and is the
+// level after the last edge at or before that time. So an edge at e ps shows from sample
+// ceil(e * rate_hz / 1e12) on (128-bit integers). The capture ends at end_ps: samples
+// 0 .. ceil(end_ps * rate_hz / 1e12) - 1.
+struct SampledLine {
+  std::vector<std::uint64_t> words;  // sample k is bit k % 64 of words[k / 64]
+  std::size_t count = 0;
+};
+
+inline SampledLine sample_edges_at_rate(bool initial_level, const std::vector<Edge>& edges,
+                                        std::int64_t end_ps, std::uint64_t rate_hz) {
+  __extension__ typedef unsigned __int128 Wide;
+  const auto first_sample_at = [&](std::int64_t t) {
+    const Wide n = Wide{static_cast<std::uint64_t>(t)} * rate_hz;
+    const Wide ps_per_second = 1'000'000'000'000;
+    return static_cast<std::size_t>((n + ps_per_second - 1) / ps_per_second);
+  };
+  SampledLine s;
+  s.count = first_sample_at(end_ps);
+  s.words.assign((s.count + 63) / 64, 0);
+  const auto set_high = [&](std::size_t from, std::size_t to) {  // samples [from, to)
+    to = std::min(to, s.count);
+    while (from < to) {
+      const std::size_t stop = std::min(to, (from / 64 + 1) * 64);
+      const std::size_t n = stop - from;
+      const std::uint64_t ones = n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
+      s.words[from / 64] |= ones << (from % 64);
+      from = stop;
+    }
+  };
+  bool level = initial_level;
+  std::size_t from = 0;  // first sample of the current level
+  for (const Edge& e : edges) {
+    const std::size_t at = first_sample_at(e.time_ps);
+    if (level) set_high(from, at);
+    level = e.level;
+    from = at;
+  }
+  if (level) set_high(from, s.count);
+  return s;
+}
+
+// `bits` (line bit i from i * period to (i + 1) * period ps) sampled at rate_hz.
+inline SampledLine sample_line_at_rate(const LineBits& bits, std::int64_t period,
+                                       std::uint64_t rate_hz) {
+  std::vector<Edge> edges;
+  for (std::size_t i = 1; i < bits.size(); ++i)
+    if (bits[i] != bits[i - 1]) edges.push_back({static_cast<std::int64_t>(i) * period, bits[i]});
+  return sample_edges_at_rate(bits[0], edges, static_cast<std::int64_t>(bits.size()) * period,
+                              rate_hz);
 }
 
 }  // namespace sercon::wire::test

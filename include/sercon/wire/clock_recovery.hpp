@@ -60,10 +60,24 @@ RecoveredLine recover_from_edges(bool initial_level, std::span<const Edge> edges
                                  std::int64_t start_ps, std::int64_t end_ps,
                                  const RecoveryOptions& options = {});
 
+// A sample rate in Hz. Its own type, so that it cannot be mistaken for a period in ps.
+struct SampleRate {
+  std::uint64_t hz = 0;
+};
+
 // From samples: sample k is bit k%64 of words[k/64] (1 = high), taken at
 // start_ps + k * sample_period_ps.
 RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::size_t sample_count,
                                    std::int64_t sample_period_ps, std::int64_t start_ps = 0,
+                                   const RecoveryOptions& options = {});
+
+// From samples taken at `rate`: sample k at start_ps + k * 1e12 / rate.hz ps, exactly. The
+// time of every sample is computed from k in rational arithmetic (no accumulated rounding),
+// so rates whose period is not a whole number of picoseconds (24 MHz: 41 666.67 ps; 12, 48,
+// 6 MHz) keep their timing over any capture length; edge and bit times are rounded to the
+// picosecond one by one. Same results as the period overload when 1e12 / rate.hz is whole.
+RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::size_t sample_count,
+                                   SampleRate rate, std::int64_t start_ps = 0,
                                    const RecoveryOptions& options = {});
 
 // The detection alone: the bit period (ps) of a standard rate that explains the edge

@@ -1,0 +1,93 @@
+// The exact arithmetic behind sample-based clock recovery (src/wire/sample_clock.hpp):
+// division by a precomputed reciprocal equals division, and floor((x * mul + add) / div)
+// is exact also where the intermediate passes 64 bits (brief: sample k is at
+// k * 1e12 / rate ps, computed without accumulated error).
+#include "sample_clock.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace sercon::wire::detail {
+namespace {
+
+constexpr std::uint64_t kMax = ~std::uint64_t{0};
+
+std::vector<std::uint64_t> interesting_values(std::mt19937_64& rng) {
+  std::vector<std::uint64_t> v = {1, 2, 3, 5, 6, 7, 10, 125'000, 1'000'000'000'000, kMax, kMax - 1};
+  for (int b = 1; b < 64; ++b) {
+    const std::uint64_t p = std::uint64_t{1} << b;
+    v.insert(v.end(), {p - 1, p, p + 1});
+  }
+  for (int i = 0; i < 200; ++i) v.push_back((rng() >> (rng() % 64)) | 1);
+  return v;
+}
+
+// Granlund-Montgomery division: every divisor class (1, powers of 2, 2^k +- 1, odd, the
+// largest) against the CPU's division, over numerators from 0 to 2^64 - 1.
+TEST(SampleClock, ReciprocalDivisionEqualsDivision) {
+  std::mt19937_64 rng(1);
+  const std::vector<std::uint64_t> values = interesting_values(rng);
+  for (std::uint64_t d : values) {
+    const Reciprocal r(d);
+    for (std::uint64_t n : values) {
+      ASSERT_EQ(r.divide(n), n / d) << n << " / " << d;
+      for (std::uint64_t near : {n / d * d, n / d * d - 1, n / d * d + d - 1})
+        ASSERT_EQ(r.divide(near), near / d) << near << " / " << d;
+    }
+    for (int i = 0; i < 2000; ++i) {
+      const std::uint64_t n = rng();
+      ASSERT_EQ(r.divide(n), n / d) << n << " / " << d;
+    }
+  }
+}
+
+// floor((x * mul + add) / div) equals the plain 128-bit formula, on the fast path and
+// where x * mul passes 2^64 (the 128-bit fallback), with and without a common factor.
+TEST(SampleClock, MulDivIsExactAcrossTheSixtyFourBitBoundary) {
+  std::mt19937_64 rng(2);
+  struct Case {
+    Wide mul, add, div;
+  };
+  const std::vector<Case> cases = {
+      {125'000, 3, 6},                                    // 24 MHz: offsets of half-samples
+      {8 * Wide{125'000}, 3 * 250'000 - 1, 3 * 250'000},  // 24 MHz ticks at 4 Mbit/s
+      {1'000'000'000'000, 999'999'937, 2 * Wide{999'999'937}},
+      {8 * Wide{1'000'000'000'000}, Wide{999'999'937} * 62'500 - 1, Wide{999'999'937} * 62'500},
+      {Wide{kMax} * 4, 7, Wide{kMax} * 3},  // everything beyond 64 bits
+  };
+  for (const Case& c : cases) {
+    const MulDiv f(c.mul, c.add, c.div);
+    for (std::uint64_t x :
+         {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{9'223'372}, std::uint64_t{1} << 40}) {
+      const Wide expected = (Wide{x} * c.mul + c.add) / c.div;
+      ASSERT_EQ(Wide{f(x)}, expected) << "x " << x;
+    }
+    for (int i = 0; i < 5000; ++i) {
+      const std::uint64_t x = rng() >> (20 + rng() % 44);
+      const Wide expected = (Wide{x} * c.mul + c.add) / c.div;
+      ASSERT_EQ(Wide{f(x)}, expected) << "x " << x;
+    }
+  }
+}
+
+// SampleClock at 24 MHz, 4 Mbit/s: half-sample m lies at m * 125000 / 6 ps, rounded half
+// up, and its tick is ceil(16 * t / 250000) of the exact t, also 100 M samples in.
+TEST(SampleClock, TwentyFourMegahertzTimesAndTicks) {
+  const SampleClock clock(125'000, 3, 1'000, 250'000);
+  for (std::uint64_t m : {std::uint64_t{1}, std::uint64_t{3}, std::uint64_t{5}, std::uint64_t{7},
+                          std::uint64_t{199'999'999}, std::uint64_t{200'000'001}}) {
+    const Wide twice_offset = Wide{m} * 125'000 * 2 / 6;  // 2 t, floored
+    const auto expected_t = static_cast<std::int64_t>((twice_offset + 1) / 2) + 1'000;
+    EXPECT_EQ(clock.time_ps(m), expected_t) << m;
+    const Wide n = Wide{m} * 125'000 * 16;  // 16 t * 6, over 6 * 250000
+    EXPECT_EQ(Wide{static_cast<std::uint64_t>(clock.tick(m))},
+              (n + 6 * 250'000 - 1) / (6 * 250'000))
+        << m;
+  }
+}
+
+}  // namespace
+}  // namespace sercon::wire::detail
