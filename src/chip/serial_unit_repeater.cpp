@@ -76,8 +76,10 @@ void SerialRepeater::refresh() {
     // Switched on: the line takes up what RxD carries now (a telegram half-way through is
     // not picked up; its rest would decode to nothing).
     if (on) forwarded_ = unit_.receiver().input();
+    if (!own_active_) show_line();
+  } else if (!repon_ && !own_active_) {
+    show_line();  // the own idle fill at a new bit rate; a repeated telegram is left alone
   }
-  if (!own_active_) show_line();
 }
 
 void SerialRepeater::show_line() {

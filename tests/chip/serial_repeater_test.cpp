@@ -132,6 +132,21 @@ TEST(serial_Repeater, AfterTheOwnTelegramTheLineShowsTheReceivedCondition) {
   EXPECT_EQ(b.txd1.last().at, own_end);
 }
 
+// Writing other bits of 0x01 (POLTXD here) while a telegram passes leaves it whole: only a
+// change of REPON or of the bit rate changes what the line carries.
+TEST(serial_Repeater, OtherModeBitsLeaveATelegramInPassageAlone) {
+  Repeating b;
+  const Time t = b.period();
+  const auto bits = telegram_bits(0x44, kData);
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  b.run_to(forwarded(0, t) + 10 * t);
+  const std::size_t told = b.txd1.events.size();
+  b.set_sermode_bits(testing::kPoltxd, true);
+  b.run_to(1000 * t);
+  EXPECT_EQ(b.txd1.events.size(), told);
+  EXPECT_TRUE(b.txd1.last().burst);
+}
+
 // REPON written while running: on takes up the received condition at once; off returns the
 // line to the own idle fill.
 TEST(serial_Repeater, SwitchingReponWhileRunning) {
