@@ -107,21 +107,24 @@ struct BusyWatch {
   Time low_since_ = -1;
 };
 
-// Work per input is bounded by events, not simulated time: a chip programmed for a cycle
-// every MCLK period makes millions of events in a few simulated milliseconds.
-struct EventBudget {
-  std::size_t left = 100'000;
-  // Runs events up to `until`; false (and the clock left where it is) when the budget
-  // ran out first.
-  bool run_until(sercon::sim::Scheduler& scheduler, Time until) {
+// Work per input is bounded by events and by the telegram processor's RAM accesses, not
+// by simulated time: a chip programmed for a cycle every few MCLK periods makes millions
+// of events in a few simulated milliseconds, and each cycle may walk a list of a thousand
+// headers.
+struct WorkBudget {
+  std::size_t events_left = 100'000;
+  std::uint64_t tp_access_limit = 1'000'000;
+  // Runs events up to `until`; false (the clock left where it is) when the budget ran out.
+  bool run_until(Chip& chip, Time until) {
+    sercon::sim::Scheduler& scheduler = chip.scheduler();
     for (;;) {
       const auto next = scheduler.next_time();
       if (!next || *next > until) {
         scheduler.run_until(until);
         return true;
       }
-      if (left == 0) return false;
-      --left;
+      if (events_left == 0 || chip.tp_ram_accesses() > tp_access_limit) return false;
+      --events_left;
       scheduler.step();
     }
   }
@@ -135,8 +138,8 @@ void drive(Chip& chip, Pin p, Level level) {
   }
 }
 
-// Returns false when the input's event budget is spent.
-bool one_operation(FuzzedDataProvider& in, Chip& chip, BusyWatch& busy, EventBudget& budget) {
+// Returns false when the input's work budget is spent.
+bool one_operation(FuzzedDataProvider& in, Chip& chip, BusyWatch& busy, WorkBudget& budget) {
   sercon::sim::Scheduler& scheduler = chip.scheduler();
   const std::uint16_t ram_words = chip.ram().size();
   switch (in.ConsumeIntegralInRange(0, 8)) {
@@ -192,22 +195,22 @@ bool one_operation(FuzzedDataProvider& in, Chip& chip, BusyWatch& busy, EventBud
       const Pin strobe = in.ConsumeBool() ? Pin::RDN : Pin::WRN;
       drive(chip, strobe, Level::Low);
       const Time hold = in.ConsumeBool() ? in.ConsumeIntegralInRange<Time>(0, 200'000) : 0;
-      if (!budget.run_until(scheduler, scheduler.now() + hold)) return false;
+      if (!budget.run_until(chip, scheduler.now() + hold)) return false;
       drive(chip, strobe, Level::High);
       break;
     }
     case 6: {  // a short time step (up to 20 µs)
       const Time step = in.ConsumeIntegralInRange<Time>(0, 20'000'000);
-      if (!budget.run_until(scheduler, scheduler.now() + step)) return false;
+      if (!budget.run_until(chip, scheduler.now() + step)) return false;
       break;
     }
     case 7: {  // a long time step (up to 5 ms): lets timers and the watchdog run out
       const Time step = in.ConsumeIntegralInRange<Time>(0, 5'000'000'000);
-      if (!budget.run_until(scheduler, scheduler.now() + step)) return false;
+      if (!budget.run_until(chip, scheduler.now() + step)) return false;
       break;
     }
     case 8: {  // MCLK-aligned step, so collisions land on period edges
-      if (!budget.run_until(scheduler, chip.next_mclk_edge(scheduler.now() + 1))) return false;
+      if (!budget.run_until(chip, chip.next_mclk_edge(scheduler.now() + 1))) return false;
       break;
     }
   }
@@ -223,7 +226,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   sercon::sim::Scheduler scheduler;
   Chip chip(scheduler, fuzzed_config(in));
   BusyWatch busy(chip);
-  EventBudget budget;
+  WorkBudget budget;
   for (int ops = 0; ops < 256 && in.remaining_bytes() > 0; ++ops) {
     if (!one_operation(in, chip, busy, budget)) break;
   }

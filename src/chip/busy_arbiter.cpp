@@ -5,29 +5,25 @@
 
 namespace sercon::chip {
 
-BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period,
+BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period, std::uint16_t ram_words,
                          std::function<void(bool)> drive_busyn)
-    : scheduler_(scheduler), mclk_period_(mclk_period), drive_busyn_(std::move(drive_busyn)) {
+    : scheduler_(scheduler),
+      mclk_period_(mclk_period),
+      drive_busyn_(std::move(drive_busyn)),
+      last_used_(ram_words, -1) {
   if (mclk_period_ <= 0) throw std::invalid_argument("BusyArbiter: MCLK period must be > 0");
 }
 
 BusyArbiter::~BusyArbiter() { scheduler_.cancel(release_event_); }
 
 void BusyArbiter::internal_access(std::uint16_t word) {
-  const auto period = period_index(scheduler_.now());
-  if (period != words_period_) {
-    words_.clear();
-    words_period_ = period;
-  }
-  if (std::find(words_.begin(), words_.end(), word) == words_.end()) words_.push_back(word);
+  last_used_.at(word) = period_index(scheduler_.now());
 }
 
 bool BusyArbiter::host_access(std::uint16_t word) {
   const sim::Time now = scheduler_.now();
   const auto period = period_index(now);
-  if (period != words_period_ || std::find(words_.begin(), words_.end(), word) == words_.end()) {
-    return false;
-  }
+  if (last_used_.at(word) != period) return false;
   // Low now, high at the next MCLK edge: at most one MCLK period (delta spec 2.8).
   const sim::Time end = (period + 1) * mclk_period_;
   scheduler_.cancel(release_event_);
@@ -48,8 +44,7 @@ void BusyArbiter::release() {
 void BusyArbiter::reset() {
   scheduler_.cancel(release_event_);
   release_event_ = {};
-  words_.clear();
-  words_period_ = -1;
+  std::fill(last_used_.begin(), last_used_.end(), -1);
   busy_ = false;
   drive_busyn_(false);
 }

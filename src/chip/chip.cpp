@@ -106,7 +106,8 @@ Chip::Chip(sim::Scheduler& scheduler, const ChipConfig& config)
       ram_(ram_words_of(config.variant)),
       output_levels_(kPinCount, Level::Low),
       chip_drives_(kPinCount, false),
-      busy_(scheduler, mclk_period_, [this](bool low) { set_output(Pin::BUSYN, !low); }) {
+      busy_(scheduler, mclk_period_, ram_words_of(config.variant),
+            [this](bool low) { set_output(Pin::BUSYN, !low); }) {
   pins_.reserve(kPinCount);
   for (std::size_t i = 0; i < kPinCount; ++i) {
     const Pin p = pin_at(i);
@@ -416,12 +417,14 @@ void Chip::ram_write(std::uint16_t word_address, std::uint16_t value) {
 std::uint16_t Chip::tp_ram_read(std::uint16_t word) {
   const std::uint16_t value = ram_.read(word);  // throws std::out_of_range first
   busy_.internal_access(word);
+  ++tp_ram_accesses_;
   return value;
 }
 
 void Chip::tp_ram_write(std::uint16_t word, std::uint16_t value) {
   ram_.write(word, value);
   busy_.internal_access(word);
+  ++tp_ram_accesses_;
 }
 
 }  // namespace sercon::chip

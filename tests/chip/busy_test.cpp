@@ -116,6 +116,14 @@ TEST(Busy, ResetReleasesBusyn) {
   EXPECT_EQ(bench.chip->pin(Pin::BUSYN).level(), Level::High);
 }
 
+TEST(Busy, InternalPortCountsItsAccessesNotTheHosts) {
+  ChipOnBench bench;
+  bench.chip->tp_ram_read(1);
+  bench.chip->tp_ram_write(2, 2);
+  bench.chip->ram_read(1);
+  EXPECT_EQ(bench.chip->tp_ram_accesses(), 2u);
+}
+
 TEST(Busy, InternalPortChecksTheAddress) {
   ChipOnBench bench;
   EXPECT_THROW(bench.chip->tp_ram_read(2048), std::out_of_range);

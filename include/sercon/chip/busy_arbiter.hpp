@@ -14,16 +14,17 @@ namespace sercon::chip {
 
 class BusyArbiter {
  public:
-  // `drive_busyn(low)` sets the BUSYN pin.
-  BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period,
+  // `drive_busyn(low)` sets the BUSYN pin; `ram_words` is the RAM's size.
+  BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period, std::uint16_t ram_words,
               std::function<void(bool low)> drive_busyn);
   ~BusyArbiter();
   BusyArbiter(const BusyArbiter&) = delete;
   BusyArbiter& operator=(const BusyArbiter&) = delete;
 
-  // The telegram processor uses `word` now (in the current MCLK period).
+  // The telegram processor uses `word` (< ram_words) now, in the current MCLK period.
   void internal_access(std::uint16_t word);
-  // The µP accesses `word` now. Returns true when it collides and BUSYN goes low.
+  // The µP accesses `word` (< ram_words) now. Returns true when it collides and BUSYN
+  // goes low.
   bool host_access(std::uint16_t word);
   bool busy() const { return busy_; }
   // BUSYN high, nothing remembered.
@@ -36,8 +37,9 @@ class BusyArbiter {
   sim::Scheduler& scheduler_;
   sim::Time mclk_period_;
   std::function<void(bool)> drive_busyn_;
-  std::int64_t words_period_ = -1;    // MCLK period that words_ belongs to
-  std::vector<std::uint16_t> words_;  // words the telegram processor used in it
+  // Per RAM word: the MCLK period in which the telegram processor last used it (-1:
+  // never). O(1) per access: a list walk reads thousands of words at one instant.
+  std::vector<std::int64_t> last_used_;
   bool busy_ = false;
   sim::Scheduler::EventId release_event_{};
 };

@@ -79,6 +79,9 @@ class Chip {
   // it in that period). `word` must be < ram().size().
   std::uint16_t tp_ram_read(std::uint16_t word);
   void tp_ram_write(std::uint16_t word, std::uint16_t value);
+  // Words the telegram processor has read or written since the chip was built (a measure
+  // of its work: statistics, and the fuzzer's work budget).
+  std::uint64_t tp_ram_accesses() const { return tp_ram_accesses_; }
 
   // --- pins -----------------------------------------------------------------------------
   sim::Signal& pin(Pin p) { return pins_.at(index_of(p)); }
@@ -148,6 +151,7 @@ class Chip {
   std::vector<sim::Level> output_levels_;  // what each output drives when OUTZ = 0
   std::vector<bool> chip_drives_;          // InOut lines the chip drives now
   BusyArbiter busy_;
+  std::uint64_t tp_ram_accesses_ = 0;
   bool rstn_low_ = false;
   bool outz_ = false;
   ResetCause last_reset_ = ResetCause::PowerOn;
