@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
-#include <queue>
-#include <unordered_map>
 #include <vector>
 
 #include "sercon/sim/time.hpp"
@@ -16,23 +14,34 @@ namespace sercon::sim {
 class Scheduler {
  public:
   using Callback = std::function<void()>;
+  // The allocation-free form for hot users: `action(context)` runs at the event's time.
+  using Action = void (*)(void* context);
   struct EventId {
     std::uint64_t value = 0;  // 0 never names an event
     friend bool operator==(EventId, EventId) = default;
   };
+
+  Scheduler() = default;
+  Scheduler(const Scheduler&) = delete;
+  Scheduler& operator=(const Scheduler&) = delete;
 
   Time now() const { return now_; }
 
   // Runs `callback` at absolute time `when`; throws std::invalid_argument if `when` is
   // in the past.
   EventId at(Time when, Callback callback);
+  // Runs `action(context)` at `when`; same rules. `context` must outlive the event.
+  EventId at(Time when, Action action, void* context);
   // Runs `callback` `delay` picoseconds from now (delay >= 0).
   EventId after(Time delay, Callback callback) { return at(now_ + delay, std::move(callback)); }
+  EventId after(Time delay, Action action, void* context) {
+    return at(now_ + delay, action, context);
+  }
 
   // Forgets a pending event. Returns false if it already ran or was cancelled.
   bool cancel(EventId id);
-  bool pending(EventId id) const { return callbacks_.contains(id.value); }
-  std::size_t pending_count() const { return callbacks_.size(); }
+  bool pending(EventId id) const { return live_slot(id) != nullptr; }
+  std::size_t pending_count() const { return live_count_; }
 
   // Runs every event due at or before `until`, then sets the clock to `until`.
   // Throws std::invalid_argument if `until` is in the past.
@@ -44,19 +53,38 @@ class Scheduler {
   std::optional<Time> next_time();
 
  private:
+  // Events live in reusable slots (no allocation per event once the vectors have grown);
+  // an EventId is the slot's index + 1 and its generation, so a stale id never matches a
+  // reused slot. The heap holds only {time, order, slot}: a cancelled event's heap entry
+  // is dropped when it comes to the top (its generation no longer matches).
+  struct Slot {
+    Action action = nullptr;  // null: `callback` holds the event
+    void* context = nullptr;
+    Callback callback;
+    std::uint32_t generation = 1;
+    bool live = false;
+  };
   struct Entry {
     Time when;
-    std::uint64_t id;  // also the tie-breaker: lower id was scheduled first
-    bool operator>(const Entry& other) const {
-      return when != other.when ? when > other.when : id > other.id;
-    }
+    std::uint64_t order;  // the tie-breaker: lower was scheduled first
+    std::uint32_t slot;
+    std::uint32_t generation;
   };
+
+  std::uint32_t take_slot(Time when);
+  void free_slot(std::uint32_t index);
+  const Slot* live_slot(EventId id) const;
+  bool top_is_live() const;
+  void drop_dead_tops();
+  void pop_top();
   bool run_next_due(Time until);
 
   Time now_ = 0;
-  std::uint64_t next_id_ = 1;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
-  std::unordered_map<std::uint64_t, Callback> callbacks_;
+  std::uint64_t next_order_ = 0;
+  std::size_t live_count_ = 0;
+  std::vector<Entry> heap_;  // binary min-heap on (when, order)
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> free_slots_;
 };
 
 }  // namespace sercon::sim
