@@ -54,11 +54,12 @@ void Fibre::check_order(sim::Time at) {
   last_input_ = at;
 }
 
-// Deliveries wait in pending_ (time order); each event holds `this` only, no allocation.
+// Deliveries wait in pending_ (time order); each event is a plain function + `this`.
 void Fibre::schedule(Delivery delivery) {
   const sim::Time at = delivery.burst.start;
   pending_.push_back(std::move(delivery));
-  pending_.back().event = scheduler_.at(at, [this] { deliver(); });
+  pending_.back().event = scheduler_.at(
+      at, [](void* self) { static_cast<Fibre*>(self)->deliver(); }, this);
 }
 
 void Fibre::deliver() {
