@@ -135,19 +135,9 @@ void DmaPort::acknowledge_write(std::uint16_t word) {
 // --- pins -----------------------------------------------------------------------------
 
 // The strobe decoding of the bus interface (datasheet Table 1, BUSMODE0/1, RDN, WRN).
-DmaPort::Strobes DmaPort::strobes() const {
-  Strobes s;
-  const bool rdn = chip_.input_high(Pin::RDN);
-  const bool wrn = chip_.input_high(Pin::WRN);
-  if (!chip_.input_high(Pin::BUSMODE0)) {
-    s.read = !rdn;
-    s.write = !wrn && rdn;
-    return s;
-  }
-  const bool strobe = chip_.input_high(Pin::BUSMODE1) ? rdn : !rdn;
-  s.read = strobe && wrn;
-  s.write = strobe && !wrn;
-  return s;
+BusStrobes DmaPort::strobes() const {
+  return decode_strobes(chip_.input_high(Pin::RDN), chip_.input_high(Pin::WRN),
+                        chip_.input_high(Pin::BUSMODE0), chip_.input_high(Pin::BUSMODE1));
 }
 
 ByteLanes DmaPort::lanes(unsigned a0) const {
@@ -163,7 +153,7 @@ unsigned DmaPort::address_a0() const {
 }
 
 void DmaPort::on_strobe_pin() {
-  const Strobes now = strobes();
+  const BusStrobes now = strobes();
   if (active_.read && !now.read) read_ends();
   if (active_.write && !now.write) write_ends();
   const bool read_starts_now = !active_.read && now.read;

@@ -21,20 +21,9 @@ void PinBus::reset(ResetCause) {
   // follows its enables, and a read in progress drives D15-0 until its strobe ends.
 }
 
-PinBus::Strobes PinBus::strobes() const {
-  Strobes s;
-  const bool rdn = chip_.input_high(Pin::RDN);
-  const bool wrn = chip_.input_high(Pin::WRN);
-  if (!chip_.input_high(Pin::BUSMODE0)) {  // Intel: RDN = read, WRN = write
-    s.read = !rdn;
-    s.write = !wrn && rdn;  // both low is no valid cycle: the read wins
-    return s;
-  }
-  // Motorola: RDN is the data strobe (0-active when BUSMODE1 = 0), WRN = read/write.
-  const bool strobe = chip_.input_high(Pin::BUSMODE1) ? rdn : !rdn;
-  s.read = strobe && wrn;
-  s.write = strobe && !wrn;
-  return s;
+BusStrobes PinBus::strobes() const {
+  return decode_strobes(chip_.input_high(Pin::RDN), chip_.input_high(Pin::WRN),
+                        chip_.input_high(Pin::BUSMODE0), chip_.input_high(Pin::BUSMODE1));
 }
 
 BusCycle PinBus::sample(bool write) const {
@@ -72,7 +61,7 @@ void PinBus::run(const BusCycle& cycle) {
 }
 
 void PinBus::on_strobe_pin() {
-  const Strobes now = strobes();
+  const BusStrobes now = strobes();
   if (active_.read && !now.read) release_data_lines();
   if (active_.write && !now.write) run(sample(true));  // data is taken at the end
   const bool read_starts = !active_.read && now.read;

@@ -7,6 +7,20 @@
 
 namespace sercon::chip {
 
+// Which access RDN and WRN make under BUSMODE1-0 (datasheet Table 1). Intel
+// (BUSMODE0 = 0): RDN = read, WRN = write; both low is no valid cycle and the read wins.
+// Motorola (BUSMODE0 = 1): RDN is the data strobe, 0-active when BUSMODE1 = 0, and WRN
+// chooses read (1) or write (0).
+struct BusStrobes {
+  bool read = false;
+  bool write = false;
+};
+constexpr BusStrobes decode_strobes(bool rdn, bool wrn, bool busmode0, bool busmode1) {
+  if (!busmode0) return {!rdn, !wrn && rdn};
+  const bool strobe = busmode1 ? rdn : !rdn;
+  return {strobe && wrn, strobe && !wrn};
+}
+
 // Pin levels are `true` = high. Defaults: nothing selected, BHEN inactive.
 struct BusCycle {
   bool write = false;

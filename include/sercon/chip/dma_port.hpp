@@ -53,17 +53,13 @@ class DmaPort : public ChipUnit {
   std::size_t transmit_count() const { return tx_.size(); }
 
  private:
-  struct Strobes {
-    bool read = false;
-    bool write = false;
-  };
   // One access to a FIFO. `completes`: the access moves the word (16-bit bus, or the
   // A0 = 1 byte on an 8-bit bus).
   bool read_word(bool completes, std::uint16_t& word);
   void begin_write(bool completes);
   void end_write(bool completes, std::uint16_t bits, std::uint16_t mask);
 
-  Strobes strobes() const;
+  BusStrobes strobes() const;
   ByteLanes lanes(unsigned a0) const;  // 8-bit bus
   unsigned address_a0() const;
   void on_strobe_pin();
@@ -82,7 +78,7 @@ class DmaPort : public ChipUnit {
   FieldRef rx_enable_, tx_enable_, rx_count_, tx_count_;
   WordFifo<kDepth> rx_;
   WordFifo<kDepth> tx_;
-  Strobes active_;
+  BusStrobes active_;
   bool rx_word_open_ = false;        // 8-bit bus: the head word's first byte has been read
   std::uint16_t tx_partial_ = 0;     // 8-bit bus: the word being written byte by byte
   bool tx_writing_ = false;          // a write that moves a word has begun

@@ -27,11 +27,7 @@ class PinBus : public ChipUnit {
   const BusResult& last_result() const { return last_; }
 
  private:
-  struct Strobes {
-    bool read = false;
-    bool write = false;
-  };
-  Strobes strobes() const;
+  BusStrobes strobes() const;
   void on_strobe_pin();
   void on_latch_pin();
   void drive_address_lines();
@@ -40,7 +36,7 @@ class PinBus : public ChipUnit {
   void release_data_lines();
 
   Chip& chip_;
-  Strobes active_;
+  BusStrobes active_;
   std::uint16_t latch_ = 0;
   std::uint16_t driven_ = 0;  // data lines this unit drives for a read in progress
   std::uint64_t refused_ = 0;
