@@ -7,7 +7,10 @@
  * Ownership: a sim owns its chips. Free chips with sercon_chip_free(), or all at once
  * with sercon_sim_free(), after which the chip pointers must not be used.
  * Threads: a sim and its chips belong to one thread at a time; the last error is kept
- * per thread. */
+ * per thread.
+ * Callbacks: a pin callback may read and write registers, RAM and pins, but must not
+ * free a chip or a sim or call sercon_sim_run_until(): those calls are refused there
+ * (run_until returns SERCON_ERR_ARGUMENT, the frees do nothing) and set the last error. */
 #ifndef SERCON_SERCON_H
 #define SERCON_SERCON_H
 
@@ -134,7 +137,8 @@ typedef struct sercon_chip_config {
 /* Called after a pin changed level, at simulation time t_ps. */
 typedef void (*sercon_pin_callback)(void* user, sercon_pin pin, sercon_level level, int64_t t_ps);
 
-/* The message of the last failed call on this thread ("" if none failed yet). */
+/* The message of the last failed call on this thread ("" if none failed yet). The
+ * pointer stays valid until the next failing call on this thread: copy it to keep it. */
 const char* sercon_last_error(void);
 
 sercon_sim* sercon_sim_new(void);

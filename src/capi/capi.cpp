@@ -80,6 +80,25 @@ int address_beyond(const char* what, std::uint32_t address) {
 
 }  // namespace
 
+namespace {
+// Pin callbacks run inside the scheduler's event loop: freeing the chip or the sim, or
+// letting time pass, from there would pull the ground from under the running event.
+thread_local int callback_depth = 0;
+
+struct InsideCallback {
+  InsideCallback() { ++callback_depth; }
+  ~InsideCallback() { --callback_depth; }
+  InsideCallback(const InsideCallback&) = delete;
+  InsideCallback& operator=(const InsideCallback&) = delete;
+};
+
+bool refused_in_callback(const char* what) {
+  if (callback_depth == 0) return false;
+  fail(SERCON_ERR_ARGUMENT, std::string(what) + ": not allowed inside a pin callback");
+  return true;
+}
+}  // namespace
+
 extern "C" {
 
 const char* sercon_last_error(void) { return last_error.c_str(); }
@@ -94,7 +113,7 @@ sercon_sim* sercon_sim_new(void) {
 }
 
 void sercon_sim_free(sercon_sim* sim) {
-  if (sim == nullptr) return;
+  if (sim == nullptr || refused_in_callback("sercon_sim_free")) return;
   sim->chips.clear();  // chips cancel their events before the scheduler goes
   delete sim;
 }
@@ -106,6 +125,7 @@ int64_t sercon_sim_now_ps(const sercon_sim* sim) {
 
 int sercon_sim_run_until(sercon_sim* sim, int64_t t_ps) {
   if (sim == nullptr) return null_argument("sercon_sim_run_until", "sim");
+  if (refused_in_callback("sercon_sim_run_until")) return SERCON_ERR_ARGUMENT;
   if (t_ps < sim->scheduler.now()) {
     return fail(SERCON_ERR_RANGE, "sercon_sim_run_until: " + std::to_string(t_ps) +
                                       " ps is before now (" + std::to_string(sim->scheduler.now()) +
@@ -177,7 +197,7 @@ sercon_chip* sercon_chip_new(sercon_sim* sim, const sercon_chip_config* config) 
 }
 
 void sercon_chip_free(sercon_chip* chip) {
-  if (chip == nullptr) return;
+  if (chip == nullptr || refused_in_callback("sercon_chip_free")) return;
   auto& chips = chip->sim->chips;
   std::erase_if(chips, [chip](const auto& owned) { return owned.get() == chip; });
 }
@@ -256,6 +276,7 @@ int sercon_on_pin_change(sercon_chip* chip, int pin, sercon_pin_callback callbac
   return guarded(what, [&] {
     sercon::sim::Scheduler& scheduler = chip->sim->scheduler;
     chip->chip->pin(static_cast<Pin>(pin)).watch([&scheduler, callback, user, pin](auto level) {
+      const InsideCallback inside;
       callback(user, static_cast<sercon_pin>(pin), static_cast<sercon_level>(level),
                scheduler.now());
     });

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 namespace {
@@ -160,3 +161,41 @@ TEST(CApi, FreeingAChipKeepsTheSimulationUsable) {
 }
 
 }  // namespace
+
+namespace {
+
+struct CallbackProbe {
+  sercon_sim* sim = nullptr;
+  sercon_chip* chip = nullptr;
+  int run_until_status = 0;
+  std::string run_until_error;
+  std::string free_error;
+};
+
+}  // namespace
+
+// sercon.h, "Callbacks": freeing from inside a pin callback, or letting time pass there,
+// would pull the running event from under the scheduler; those calls are refused.
+TEST(CApi, CallbacksCannotFreeOrRunTheSimulation) {
+  SimAndChip s;
+  CallbackProbe probe{s.sim, s.chip, 0, {}, {}};
+  ASSERT_EQ(sercon_on_pin_change(
+                s.chip, SERCON_PIN_RSTN,
+                [](void* user, sercon_pin, sercon_level, int64_t) {
+                  auto* p = static_cast<CallbackProbe*>(user);
+                  p->run_until_status = sercon_sim_run_until(p->sim, sercon_sim_now_ps(p->sim) + 1);
+                  p->run_until_error = sercon_last_error();
+                  sercon_chip_free(p->chip);
+                  p->free_error = sercon_last_error();
+                  sercon_sim_free(p->sim);
+                },
+                &probe),
+            SERCON_OK);
+  ASSERT_EQ(sercon_pin_set(s.chip, SERCON_PIN_RSTN, SERCON_LOW), SERCON_OK);
+  EXPECT_EQ(probe.run_until_status, SERCON_ERR_ARGUMENT);
+  EXPECT_THAT(probe.run_until_error, HasSubstr("inside a pin callback"));
+  EXPECT_THAT(probe.free_error, HasSubstr("sercon_chip_free: not allowed inside a pin callback"));
+  // The chip and the sim are still there and usable.
+  EXPECT_EQ(sercon_pin_set(s.chip, SERCON_PIN_RSTN, SERCON_HIGH), SERCON_OK);
+  EXPECT_EQ(sercon_reg_read(s.chip, 0x00), 0x0010);
+}
