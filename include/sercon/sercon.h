@@ -123,7 +123,7 @@ typedef enum sercon_pin {
 
 typedef struct sercon_chip_config {
   int variant;     /* sercon_variant */
-  int64_t mclk_hz; /* 12..64 MHz, 1e12 divisible by it (exact picosecond period) */
+  int64_t mclk_hz; /* 12..64 MHz, any whole number of Hz */
   int64_t sclk_hz; /* up to 64 MHz (64 MHz nominal) */
   /* Levels (0 or 1) of the strap pins the board ties. */
   int sbaud;   /* pin 29 */

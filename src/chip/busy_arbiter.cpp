@@ -1,18 +1,15 @@
 #include "sercon/chip/busy_arbiter.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 
 namespace sercon::chip {
 
-BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period, std::uint16_t ram_words,
+BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, const MclkGrid& mclk, std::uint16_t ram_words,
                          std::function<void(bool)> drive_busyn)
     : scheduler_(scheduler),
-      mclk_period_(mclk_period),
+      mclk_(mclk),
       drive_busyn_(std::move(drive_busyn)),
-      last_used_(ram_words, -1) {
-  if (mclk_period_ <= 0) throw std::invalid_argument("BusyArbiter: MCLK period must be > 0");
-}
+      last_used_(ram_words, -1) {}
 
 BusyArbiter::~BusyArbiter() { scheduler_.cancel(release_event_); }
 
@@ -25,7 +22,7 @@ bool BusyArbiter::host_access(std::uint16_t word) {
   const auto period = period_index(now);
   if (last_used_.at(word) != period) return false;
   // Low now, high at the next MCLK edge: at most one MCLK period (delta spec 2.8).
-  const sim::Time end = (period + 1) * mclk_period_;
+  const sim::Time end = mclk_.time_of(period + 1);
   scheduler_.cancel(release_event_);
   release_event_ = scheduler_.at(end, [this] { release(); });
   if (!busy_) {

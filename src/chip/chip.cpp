@@ -101,12 +101,12 @@ Level initial_level(Pin p, const ChipConfig& c) {
 Chip::Chip(sim::Scheduler& scheduler, const ChipConfig& config)
     : scheduler_(scheduler),
       config_(validated(config)),
-      mclk_period_(sim::period_of_hz(config.mclk_hz)),
+      mclk_(config_.mclk_hz),
       regs_(config.variant),
       ram_(ram_words_of(config.variant)),
       output_levels_(kPinCount, Level::Low),
       chip_drives_(kPinCount, false),
-      busy_(scheduler, mclk_period_, ram_words_of(config.variant),
+      busy_(scheduler, mclk_, ram_words_of(config.variant),
             [this](bool low) { set_output(Pin::BUSYN, !low); }) {
   pins_.reserve(kPinCount);
   for (std::size_t i = 0; i < kPinCount; ++i) {
@@ -266,8 +266,7 @@ void Chip::refresh_outputs() {
 // --- clocks and modes -----------------------------------------------------------------
 
 sim::Time Chip::next_mclk_edge(sim::Time t) const {
-  if (t <= 0) return 0;
-  return ((t + mclk_period_ - 1) / mclk_period_) * mclk_period_;
+  return mclk_.time_of(mclk_.first_at_or_after(t));
 }
 
 SerialClocks Chip::serial_clocks() const {

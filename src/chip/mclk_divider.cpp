@@ -6,21 +6,49 @@
 
 namespace sercon::chip {
 
-MclkGrid::MclkGrid(sim::Time period) : period_(period) {
-  if (period <= 0) {
-    throw std::invalid_argument("MclkGrid: MCLK period must be > 0 ps, got " +
-                                std::to_string(period));
+namespace {
+
+// 128 bits: edge * 1e12 and t * f_MCLK overflow 64 bits after about 100 days of
+// simulated time.
+__extension__ typedef __int128 Wide;
+
+// floor(n / d) for d > 0.
+Wide floor_div(Wide n, Wide d) {
+  const Wide q = n / d;
+  return (n % d != 0 && n < 0) ? q - 1 : q;
+}
+
+}  // namespace
+
+MclkGrid::MclkGrid(std::int64_t hz) : hz_(hz) {
+  if (hz <= 0 || hz > sim::kSecond) {
+    throw std::invalid_argument("MclkGrid: MCLK must be 1 Hz..1 THz, got " + std::to_string(hz) +
+                                " Hz");
   }
 }
 
-Edge MclkGrid::first_at_or_after(sim::Time t) const {
-  if (t <= 0) return 0;
-  return (t + period_ - 1) / period_;
+MclkGrid MclkGrid::of_period(sim::Time period) {
+  if (period <= 0 || sim::kSecond % period != 0) {
+    throw std::invalid_argument("MclkGrid: " + std::to_string(period) +
+                                " ps is not an exact MCLK period (1e12 % period != 0)");
+  }
+  return MclkGrid(sim::kSecond / period);
 }
 
+sim::Time MclkGrid::time_of(Edge edge) const {
+  return static_cast<sim::Time>(floor_div(Wide{edge} * sim::kSecond, hz_));
+}
+
+// The smallest k with floor(k * 1e12 / f) >= t, i.e. k * 1e12 >= t * f.
+Edge MclkGrid::first_at_or_after(sim::Time t) const {
+  if (t <= 0) return 0;
+  return static_cast<Edge>(floor_div(Wide{t} * hz_ + sim::kSecond - 1, sim::kSecond));
+}
+
+// The largest k with floor(k * 1e12 / f) <= t, i.e. k * 1e12 < (t + 1) * f.
 Edge MclkGrid::last_at_or_before(sim::Time t) const {
   if (t < 0) return -1;
-  return t / period_;
+  return static_cast<Edge>(floor_div((Wide{t} + 1) * hz_ - 1, sim::kSecond));
 }
 
 DividerTicks DividerTicks::started_at(Edge start, std::int64_t first_delay, std::int64_t period) {

@@ -171,7 +171,9 @@ void SerialReceiver::receive(const RxdSegment& burst) {
 sim::Time SerialReceiver::pipeline(sim::Time t) const {
   const Chip& chip = unit_.chip();
   const sim::Time half_bits = (11 * current_.period + 1) / 2;  // 5.5 bit times
-  return chip.next_mclk_edge(t + half_bits + 3 * chip.mclk_period());
+  // Three MCLK edges after the first one at or after t + 5.5 bits.
+  const MclkGrid& mclk = chip.mclk();
+  return mclk.time_of(mclk.first_at_or_after(t + half_bits) + 3);
 }
 
 void SerialReceiver::schedule_frames(std::size_t first) {

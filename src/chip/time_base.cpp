@@ -15,12 +15,15 @@ constexpr std::uint8_t kTcntst = 0x13;
 
 }  // namespace
 
-TimeBase::TimeBase(Chip& chip) : TimeBase(chip.scheduler(), chip.regs(), chip.mclk_period()) {}
+TimeBase::TimeBase(Chip& chip) : TimeBase(chip.scheduler(), chip.regs(), chip.mclk()) {}
 
 TimeBase::TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, sim::Time mclk_period)
+    : TimeBase(scheduler, regs, MclkGrid::of_period(mclk_period)) {}
+
+TimeBase::TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid& mclk)
     : scheduler_(scheduler),
       regs_(regs),
-      mclk_(mclk_period),
+      mclk_(mclk),
       mclkdiv_(field_ref("MCLKDIV", regs.variant())),
       mclkst_(field_ref("MCLKST", regs.variant())),
       regmode_(field_ref("REGMODE", regs.variant())),

@@ -1,13 +1,14 @@
 // BUSYN (datasheet Table 1, 3.5.5/3.5.7; delta spec 2.8): when the µP touches a RAM word
 // that the telegram processor uses in the same MCLK period, BUSYN goes low at once and
 // high again at the end of that MCLK period, so it is never low for more than one MCLK.
-// MCLK periods are [k*T, (k+1)*T) from simulation time 0.
+// MCLK period k runs from MCLK edge k to edge k + 1 (MclkGrid).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <vector>
 
+#include "sercon/chip/mclk_divider.hpp"
 #include "sercon/sim/scheduler.hpp"
 
 namespace sercon::chip {
@@ -15,7 +16,7 @@ namespace sercon::chip {
 class BusyArbiter {
  public:
   // `drive_busyn(low)` sets the BUSYN pin; `ram_words` is the RAM's size.
-  BusyArbiter(sim::Scheduler& scheduler, sim::Time mclk_period, std::uint16_t ram_words,
+  BusyArbiter(sim::Scheduler& scheduler, const MclkGrid& mclk, std::uint16_t ram_words,
               std::function<void(bool low)> drive_busyn);
   ~BusyArbiter();
   BusyArbiter(const BusyArbiter&) = delete;
@@ -31,11 +32,11 @@ class BusyArbiter {
   void reset();
 
  private:
-  std::int64_t period_index(sim::Time t) const { return t / mclk_period_; }
+  Edge period_index(sim::Time t) const { return mclk_.last_at_or_before(t); }
   void release();
 
   sim::Scheduler& scheduler_;
-  sim::Time mclk_period_;
+  MclkGrid mclk_;
   std::function<void(bool)> drive_busyn_;
   // Per RAM word: the MCLK period in which the telegram processor last used it (-1:
   // never). O(1) per access: a list walk reads thousands of words at one instant.

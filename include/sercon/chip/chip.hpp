@@ -15,8 +15,8 @@
 //     from the constructor: power-on is a reset + release like any other.
 //  4. Drive output pins with set_output(pin, level), never pin(p).set(): set_output
 //     remembers the level and keeps the pin high-impedance while OUTZ = 1.
-//  5. Time: scheduler().now() in picoseconds; mclk_period() and next_mclk_edge() give
-//     the MCLK grid (edges at k * period from time 0).
+//  5. Time: scheduler().now() in picoseconds; mclk() and next_mclk_edge() give the MCLK
+//     grid (edge k at floor(k * 1e12 / f_MCLK) ps from time 0, exact for any frequency).
 //  6. A unit's destructor cancels its pending events: a chip can be freed (C API) while
 //     its scheduler runs on.
 #pragma once
@@ -31,6 +31,7 @@
 #include "sercon/chip/chip_config.hpp"
 #include "sercon/chip/chip_unit.hpp"
 #include "sercon/chip/dpram.hpp"
+#include "sercon/chip/mclk_divider.hpp"
 #include "sercon/chip/pins.hpp"
 #include "sercon/chip/register_file.hpp"
 #include "sercon/chip/serial_clock.hpp"
@@ -107,7 +108,10 @@ class Chip {
   ResetCause last_reset() const { return last_reset_; }
 
   // --- clocks and modes -----------------------------------------------------------------
-  sim::Time mclk_period() const { return mclk_period_; }
+  const MclkGrid& mclk() const { return mclk_; }
+  // The longest gap between MCLK edges (1e12 / f_MCLK rounded up); the edges themselves
+  // come from mclk() / next_mclk_edge().
+  sim::Time mclk_period() const { return mclk_.period(); }
   sim::Time next_mclk_edge(sim::Time t) const;  // first MCLK rising edge at or after t
   // Bit rate (= TxC / RxC frequency) and SCLKO2 / SCLKO4 from pins and register 0x01.
   // All 0 while OUTZ = 1 (clocks off). The clock outputs are exposed as frequencies; their
@@ -144,7 +148,7 @@ class Chip {
 
   sim::Scheduler& scheduler_;
   ChipConfig config_;
-  sim::Time mclk_period_;
+  MclkGrid mclk_;
   RegisterFile regs_;
   Dpram ram_;
   std::vector<sim::Signal> pins_;          // index == Pin; never resized

@@ -1,7 +1,8 @@
 // The MCLK grid and the MCLKDIV dividers derived from it (delta spec 2.11.1.2, 2.6.3).
-// Every divider tick falls on an MCLK rising edge, and edge k is at k * period from time
-// 0 (as Chip::next_mclk_edge), so all times here are exact picoseconds. Nothing is
-// ticked: a divider is an anchor and a period, and tick times are computed.
+// Every divider tick falls on an MCLK rising edge. Edge k is at floor(k * 1e12 / f_MCLK)
+// ps from time 0 (as Chip::next_mclk_edge): exact for any frequency, with no drift, and
+// k * period when the period is a whole number of picoseconds. Nothing is ticked: a
+// divider is an anchor and a period, and tick times are computed.
 #pragma once
 
 #include <cstdint>
@@ -14,16 +15,22 @@ using Edge = std::int64_t;  // index of an MCLK rising edge
 
 class MclkGrid {
  public:
-  // std::invalid_argument unless period > 0.
-  explicit MclkGrid(sim::Time period);
+  // std::invalid_argument unless 0 < hz <= 1e12.
+  explicit MclkGrid(std::int64_t hz);
+  // The grid of a period that is a whole number of picoseconds (1e12 % period == 0);
+  // std::invalid_argument otherwise.
+  static MclkGrid of_period(sim::Time period);
 
-  sim::Time period() const { return period_; }
-  sim::Time time_of(Edge edge) const { return edge * period_; }
+  std::int64_t hz() const { return hz_; }
+  // The longest gap between two edges: 1e12 / f_MCLK rounded up. Edges are apart by it or
+  // by one picosecond less.
+  sim::Time period() const { return (sim::kSecond + hz_ - 1) / hz_; }
+  sim::Time time_of(Edge edge) const;         // floor(edge * 1e12 / f_MCLK)
   Edge first_at_or_after(sim::Time t) const;  // 0 for t <= 0
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
 
  private:
-  sim::Time period_;
+  std::int64_t hz_;
 };
 
 // The ticks of one divider since its last restart. Tick k (k = 1, 2, ...) falls on edge

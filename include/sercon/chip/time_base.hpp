@@ -44,6 +44,8 @@ class TimeBase : public ChipUnit {
   using CycleEvent = std::uint64_t;  // 0 names no event
 
   explicit TimeBase(Chip& chip);
+  TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid& mclk);
+  // An MCLK period of a whole number of picoseconds (MclkGrid::of_period).
   TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, sim::Time mclk_period);
   // Cancels every pending cycle-time event, also those other units asked for.
   ~TimeBase() override;
@@ -54,9 +56,10 @@ class TimeBase : public ChipUnit {
   sim::Scheduler& scheduler() const { return scheduler_; }
   RegisterFile& regs() const { return regs_; }
   const MclkGrid& mclk() const { return mclk_; }
-  // MCLK periods per µs tick (MCLKDIV + 1) and the tick's length in picoseconds.
+  // MCLK periods per µs tick (MCLKDIV + 1) and the tick's nominal length in picoseconds
+  // ((MCLKDIV + 1) * 1e12 / f_MCLK rounded down; the ticks themselves are on MCLK edges).
   std::int64_t tick_period() const { return divider_ + 1; }
-  sim::Time tick_duration() const { return tick_period() * mclk_.period(); }
+  sim::Time tick_duration() const { return mclk_.time_of(tick_period()); }
 
   // The counter now, not wrapped (TCNT reads it modulo 2^16); 0 while held in reset.
   std::int64_t count() const;
