@@ -86,7 +86,7 @@ void add_decode_command(CLI::App& app) {
       "Prints one line per telegram (time in ns from the capture start, kind, address, length,\n"
       "data in hex, FCS status; MSTs also the phase), broken frames with error=CLASS, then a\n"
       "summary. Exit status 0 for a readable capture, even with broken telegrams; 1 for bad\n"
-      "input. See docs/decode.md.\n\n"
+      "input; 2 for a malformed command line. See docs/decode.md.\n\n"
       "Examples:\n"
       "  sercon decode --rate 4M captures/phase-up-4drives.bits\n"
       "  sercon decode captures/cp4-excerpt.vcd\n"

@@ -2,6 +2,8 @@
 // *_command.cpp and registers itself here.
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+
 #include "decode_command.hpp"
 
 int main(int argc, char** argv) {
@@ -9,6 +11,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Run `sercon SUBCOMMAND --help` for the options of each subcommand.");
   sercon::tools::add_decode_command(app);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a subcommand failed and has said why
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // A malformed command line: one message in the house form, and status 2 (as
+    // getopt-style tools do), so scripts can tell it from bad input (1).
+    std::cerr << "sercon: error: " << e.what() << "\nRun `sercon --help` for usage.\n";
+    return 2;
+  }
   return 0;
 }

@@ -56,6 +56,17 @@ TEST_F(DecodeBadInput, UnknownFormatOption) {
   expect_failure({"--format", "csv", path("good.bits")}, {"--format", "csv"});
 }
 
+// docs/decode.md "Exit status": a malformed command line is status 2 with one
+// `sercon: error:` line; bad input (a readable command, a bad file) is status 1.
+TEST_F(DecodeBadInput, MalformedCommandLineIsStatusTwo) {
+  const RunResult bad_option = run_sercon({"decode", "--format", "csv", path("good.bits")});
+  EXPECT_EQ(bad_option.status, 2);
+  EXPECT_NE(bad_option.err.find("sercon: error:"), std::string::npos) << bad_option.err;
+  EXPECT_EQ(run_sercon({}).status, 2);  // no subcommand
+  EXPECT_EQ(run_sercon({"decode", "--rate", "4M", path("missing.bits")}).status, 1);
+  EXPECT_EQ(run_sercon({"decode", "--help"}).status, 0);
+}
+
 TEST_F(DecodeBadInput, WrongFormatContent) {
   expect_failure({"--format", "vcd", path("good.bits")}, {"good.bits", "not a VCD text file"});
   expect_failure({"--format", "sr", path("good.vcd")}, {"good.vcd", "not a zip archive"});
