@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "register_words.hpp"
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
@@ -24,45 +25,7 @@ namespace sercon::chip::telegram_testing {
 
 using sim::Time;
 
-// Register word addresses and bits (register table), spelled out.
-inline constexpr std::uint16_t kSerMode = 0x01;
-inline constexpr std::uint16_t kSerCtrl = 0x02;
-inline constexpr std::uint16_t kTpCtrl = 0x03;
-inline constexpr std::uint16_t kIntStat = 0x04;
-inline constexpr std::uint16_t kPhase = 0x0A;
-inline constexpr std::uint16_t kDmaCtrl = 0x0C;
-inline constexpr std::uint16_t kClockDiv = 0x0E;
-inline constexpr std::uint16_t kTscyc0 = 0x0F;
-inline constexpr std::uint16_t kTscyc1 = 0x10;
-inline constexpr std::uint16_t kTcycdel = 0x11;
-inline constexpr std::uint16_t kTcntst = 0x13;
-inline constexpr std::uint16_t kJtscyc1 = 0x15;
-inline constexpr std::uint16_t kJtscyc2 = 0x16;
-inline constexpr std::uint16_t kJtrdel1 = 0x18;
-inline constexpr std::uint16_t kJtrdel2 = 0x19;
-inline constexpr std::uint16_t kSlvFlags = 0x25;
-inline constexpr std::uint16_t kWdCtrl = 0x28;
-inline constexpr std::uint16_t kTwdog = 0x2A;
-
-inline constexpr std::uint16_t kRepon = 0x0008;      // 0x01 bit 3
-inline constexpr std::uint16_t kRegmode = 0x0020;    // 0x01 bit 5
-inline constexpr std::uint16_t kSwbaud = 0x0040;     // 0x01 bit 6
-inline constexpr std::uint16_t kEntsbaud = 0x0400;   // 0x01 bit 10
-inline constexpr std::uint16_t kSwbaud16 = 0x8000;   // 0x01 bit 15
-inline constexpr std::uint16_t kTxd1Light = 0x0041;  // 0x02: TxD1 driven, transmitter on
-inline constexpr std::uint16_t kEntmt = 0x0100;      // 0x03 bit 8
-inline constexpr std::uint16_t kFlmdtadr = 0x1000;   // 0x25 bit 12
-
-// INTSTAT (0x04) bits.
-inline constexpr std::uint16_t kIntCycst = 1u << 2;
-inline constexpr std::uint16_t kIntRend = 1u << 3;
-inline constexpr std::uint16_t kIntTend = 1u << 4;
-inline constexpr std::uint16_t kIntRerr = 1u << 5;
-inline constexpr std::uint16_t kIntEndmk = 1u << 6;
-inline constexpr std::uint16_t kIntMstMiss = 1u << 9;
-inline constexpr std::uint16_t kIntRetmst = 1u << 10;
-inline constexpr std::uint16_t kIntDmaerr = 1u << 13;
-inline constexpr std::uint16_t kIntRscend = 1u << 6;  // WDCTRL (0x28) bit 6
+using namespace register_words;
 
 // One telegram seen leaving a chip's TxD1.
 struct Seen {
