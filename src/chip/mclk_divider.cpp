@@ -1,6 +1,7 @@
 #include "sercon/chip/mclk_divider.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -25,6 +26,11 @@ MclkGrid::MclkGrid(std::int64_t hz) : hz_(hz) {
     throw std::invalid_argument("MclkGrid: MCLK must be 1 Hz..1 THz, got " + std::to_string(hz) +
                                 " Hz");
   }
+  const auto g = static_cast<std::uint64_t>(std::gcd(hz, sim::kSecond));
+  num_ = static_cast<std::uint64_t>(hz) / g;
+  den_ = static_cast<std::uint64_t>(sim::kSecond) / g;
+  std::uint64_t bound;
+  narrow_ = !__builtin_mul_overflow(num_ + 1, den_, &bound);
 }
 
 MclkGrid MclkGrid::of_period(sim::Time period) {
@@ -35,19 +41,17 @@ MclkGrid MclkGrid::of_period(sim::Time period) {
   return MclkGrid(sim::kSecond / period);
 }
 
-sim::Time MclkGrid::time_of(Edge edge) const {
+sim::Time MclkGrid::wide_time_of(Edge edge) const {
   return static_cast<sim::Time>(floor_div(Wide{edge} * sim::kSecond, hz_));
 }
 
-// The smallest k with floor(k * 1e12 / f) >= t, i.e. k * 1e12 >= t * f.
-Edge MclkGrid::first_at_or_after(sim::Time t) const {
-  if (t <= 0) return 0;
+// The smallest k with floor(k * 1e12 / f) >= t, i.e. k * 1e12 >= t * f (t > 0).
+Edge MclkGrid::wide_first_at_or_after(sim::Time t) const {
   return static_cast<Edge>(floor_div(Wide{t} * hz_ + sim::kSecond - 1, sim::kSecond));
 }
 
-// The largest k with floor(k * 1e12 / f) <= t, i.e. k * 1e12 < (t + 1) * f.
-Edge MclkGrid::last_at_or_before(sim::Time t) const {
-  if (t < 0) return -1;
+// The largest k with floor(k * 1e12 / f) <= t, i.e. k * 1e12 < (t + 1) * f (t >= 0).
+Edge MclkGrid::wide_last_at_or_before(sim::Time t) const {
   return static_cast<Edge>(floor_div((Wide{t} + 1) * hz_ - 1, sim::kSecond));
 }
 

@@ -3,6 +3,7 @@
 // Expectations are computed here from that rule alone.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "sercon/chip/mclk_divider.hpp"
@@ -129,6 +130,86 @@ TEST(MclkGrid, BusynUntilTheNextEdgeAt12MHz) {
     const std::vector<PinLog::Change> expected{{at, Level::Low}, {end, Level::High}};
     EXPECT_EQ(log.changes, expected) << at;
     EXPECT_LE(end - at, b.chip.mclk_period()) << at;
+  }
+}
+
+// mclk_divider.hpp: edge k is at floor(k * 1e12 / f_MCLK) for every frequency, computed
+// without 128-bit division where 64 bits provably suffice. These are the 128-bit formulas
+// that rule was first written with; the grid must agree with them bit for bit, on both
+// sides of every edge, up to times near 2^62 ps (53 days) and beyond.
+__extension__ typedef __int128 Wide;
+Wide floor_div(Wide n, Wide d) {
+  const Wide q = n / d;
+  return (n % d != 0 && n < 0) ? q - 1 : q;
+}
+Time ref_time_of(std::int64_t hz, std::int64_t k) {
+  return static_cast<Time>(floor_div(Wide{k} * sim::kSecond, hz));
+}
+std::int64_t ref_first_at_or_after(std::int64_t hz, Time t) {
+  if (t <= 0) return 0;
+  return static_cast<std::int64_t>(floor_div(Wide{t} * hz + sim::kSecond - 1, sim::kSecond));
+}
+std::int64_t ref_last_at_or_before(std::int64_t hz, Time t) {
+  if (t < 0) return -1;
+  return static_cast<std::int64_t>(floor_div((Wide{t} + 1) * hz - 1, sim::kSecond));
+}
+
+TEST(MclkGrid, FastPathMatchesThe128BitFormula) {
+  // Exact periods (1e12 % f == 0), inexact ones in the chip's 12..64 MHz, odd ones whose
+  // reduced fraction is large (19 MHz + 1 and up take the 128-bit path), and the limits.
+  const std::vector<std::int64_t> clocks{
+      16'000'000, 20'000'000, 25'000'000, 32'000'000, 40'000'000, 50'000'000,      64'000'000,
+      12'000'000, 24'000'000, 33'000'000, 12'345'678, 48'000'000, 63'999'999,      12'000'001,
+      18'000'001, 19'000'001, 64'000'001, 1,          7,          999'999'999'989, sim::kSecond};
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  std::uint64_t seed = 0x9E37'79B9'7F4A'7C15u;
+  const auto random_below = [&seed](std::int64_t bound) {  // splitmix64, reproducible
+    seed += 0x9E37'79B9'7F4A'7C15u;
+    std::uint64_t z = seed;
+    z = (z ^ (z >> 30)) * 0xBF58'476D'1CE4'E5B9u;
+    z = (z ^ (z >> 27)) * 0x94D0'49BB'1331'11EBu;
+    return static_cast<std::int64_t>((z ^ (z >> 31)) % static_cast<std::uint64_t>(bound));
+  };
+  for (const std::int64_t hz : clocks) {
+    const MclkGrid grid(hz);
+    std::vector<Time> times{0,
+                            1,
+                            2,
+                            -1,
+                            -2,
+                            std::numeric_limits<std::int64_t>::min(),
+                            kMax,
+                            kMax - 1,
+                            std::int64_t{1} << 62,
+                            (std::int64_t{1} << 62) - 1};
+    for (int i = 0; i < 2000; ++i) {
+      // Every magnitude from 1 ps to 2^63.
+      times.push_back(random_below(std::int64_t{1} << (i % 63 + 1)));
+      times.push_back((std::int64_t{1} << 62) + random_below(sim::kSecond));
+      times.push_back(kMax - random_below(sim::kSecond));
+    }
+    std::vector<std::int64_t> edges{0, 1, -1, kMax, std::numeric_limits<std::int64_t>::min()};
+    for (const Time t : times) {
+      const std::int64_t k = ref_last_at_or_before(hz, t);
+      edges.insert(edges.end(), {k, k + 1, k - 1, t});  // t: also edges far beyond 64 bits
+    }
+    for (const Time t : times) {
+      ASSERT_EQ(grid.first_at_or_after(t), ref_first_at_or_after(hz, t)) << hz << " " << t;
+      ASSERT_EQ(grid.last_at_or_before(t), ref_last_at_or_before(hz, t)) << hz << " " << t;
+    }
+    for (const std::int64_t k : edges) {
+      ASSERT_EQ(grid.time_of(k), ref_time_of(hz, k)) << hz << " " << k;
+      const Time at = ref_time_of(hz, k);
+      // Only edges whose time (and the next one's) fits 64 bits.
+      if (k < 0 || floor_div((Wide{k} + 1) * sim::kSecond, hz) >= kMax) continue;
+      // Both sides of the edge.
+      ASSERT_EQ(grid.last_at_or_before(at), k) << hz << " " << k;
+      ASSERT_EQ(grid.first_at_or_after(at), k) << hz << " " << k;
+      ASSERT_EQ(grid.first_at_or_after(at + 1), k + 1) << hz << " " << k;
+      if (at > 0) {
+        ASSERT_EQ(grid.last_at_or_before(at - 1), k - 1) << hz << " " << k;
+      }
+    }
   }
 }
 

@@ -3,6 +3,13 @@
 // ps from time 0 (as Chip::next_mclk_edge): exact for any frequency, with no drift, and
 // k * period when the period is a whole number of picoseconds. Nothing is ticked: a
 // divider is an anchor and a period, and tick times are computed.
+//
+// Arithmetic: with f / 1e12 reduced to a / b, edge k is at floor(k * b / a) and time t
+// lies near edge t * a / b. Splitting k (or t) by a (or b) keeps every product below a * b,
+// so when (a + 1) * b fits 64 bits (every f up to 18.4 MHz, every even f up to 73 MHz) the
+// grid needs no 128-bit division; an exact period (a == 1: 16, 20, 25, 32, 40, 50, 64 MHz)
+// needs at most one 64-bit division. Other grids, and results outside 64 bits, take the
+// 128-bit formula; both give identical results (MclkGrid.FastPathMatchesThe128BitFormula).
 #pragma once
 
 #include <cstdint>
@@ -30,8 +37,57 @@ class MclkGrid {
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
 
  private:
+  // The 128-bit formulas, valid everywhere.
+  sim::Time wide_time_of(Edge edge) const;
+  Edge wide_first_at_or_after(sim::Time t) const;
+  Edge wide_last_at_or_before(sim::Time t) const;
+
   std::int64_t hz_;
+  std::uint64_t num_ = 1;  // a: f_MCLK / gcd(f_MCLK, 1e12)
+  std::uint64_t den_ = 1;  // b: 1e12 / gcd(f_MCLK, 1e12); the period when num_ == 1
+  bool narrow_ = false;    // (a + 1) * b fits 64 bits: the split formulas apply
 };
+
+// Inline: the simulation asks for edges on nearly every event.
+inline sim::Time MclkGrid::time_of(Edge edge) const {
+  if (narrow_ && edge >= 0) {
+    const auto k = static_cast<std::uint64_t>(edge);
+    // floor(k * b / a) = (k / a) * b + (k % a) * b / a; (k % a) * b < a * b.
+    const std::uint64_t whole = num_ == 1 ? k : k / num_;
+    const std::uint64_t part = num_ == 1 ? 0 : (k % num_) * den_ / num_;
+    std::uint64_t t;
+    if (!__builtin_mul_overflow(whole, den_, &t) && !__builtin_add_overflow(t, part, &t) &&
+        t <= static_cast<std::uint64_t>(INT64_MAX)) {
+      return static_cast<sim::Time>(t);
+    }
+  }
+  return wide_time_of(edge);
+}
+
+// The smallest k with k * b >= t * a: ceil(t * a / b) = (t / b) * a + ceil((t % b) * a / b).
+inline Edge MclkGrid::first_at_or_after(sim::Time t) const {
+  if (t <= 0) return 0;
+  if (!narrow_) return wide_first_at_or_after(t);
+  const auto u = static_cast<std::uint64_t>(t);
+  const std::uint64_t q = u / den_;
+  const std::uint64_t r = u % den_;
+  if (num_ == 1) return static_cast<Edge>(q + (r != 0));
+  return static_cast<Edge>(q * num_ + (r * num_ + den_ - 1) / den_);
+}
+
+// The largest k with floor(k * b / a) <= t, i.e. k * b < (t + 1) * a:
+// floor(((t + 1) * a - 1) / b), which is floor(t / b) for an exact period.
+inline Edge MclkGrid::last_at_or_before(sim::Time t) const {
+  if (t < 0) return -1;
+  if (!narrow_) return wide_last_at_or_before(t);
+  const auto u = static_cast<std::uint64_t>(t);
+  if (num_ == 1) return static_cast<Edge>(u / den_);
+  // (t + 1) = q * b + r; t < 2^63, so t + 1 fits unsigned.
+  const std::uint64_t q = (u + 1) / den_;
+  const std::uint64_t r = (u + 1) % den_;
+  if (r == 0) return static_cast<Edge>(q * num_ - 1);
+  return static_cast<Edge>(q * num_ + (r * num_ - 1) / den_);
+}
 
 // The ticks of one divider since its last restart. Tick k (k = 1, 2, ...) falls on edge
 // first + (k - 1) * period. The hardware reloads MCLKDIV at each tick, so a new period
