@@ -1,5 +1,7 @@
 #include "sercon/chip/time_base.hpp"
 
+#include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 #include "sercon/chip/chip.hpp"
@@ -36,8 +38,25 @@ TimeBase::TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid
 TimeBase::~TimeBase() { cancel_all(); }
 
 void TimeBase::cancel_all() {
-  for (auto& [id, pending] : pending_) scheduler_.cancel(pending.event);
-  pending_.clear();
+  for (auto& pending : slots_) {
+    if (pending->id == 0) continue;
+    scheduler_.cancel(pending->event);
+    release(*pending);
+  }
+}
+
+TimeBase::Pending* TimeBase::find(CycleEvent id) const {
+  const std::uint64_t index = id & ((std::uint64_t{1} << kIndexBits) - 1);
+  if (index == 0 || index > slots_.size()) return nullptr;
+  Pending* pending = slots_[index - 1].get();
+  return pending->id == id ? pending : nullptr;
+}
+
+void TimeBase::release(Pending& pending) {
+  const std::uint64_t index = pending.id & ((std::uint64_t{1} << kIndexBits) - 1);
+  pending.id = 0;
+  pending.callback = nullptr;  // what it captured goes now, as when the event was erased
+  free_slots_.push_back(static_cast<std::uint32_t>(index - 1));
 }
 
 void TimeBase::reset(ResetCause) {
@@ -94,49 +113,60 @@ void TimeBase::begin(CycleKind kind) {
 // still run; later ones belonged to the old cycle and are dropped.
 void TimeBase::drop_future_events() {
   const sim::Time now = scheduler_.now();
-  for (auto it = pending_.begin(); it != pending_.end();) {
-    if (it->second.when > now) {
-      scheduler_.cancel(it->second.event);
-      it = pending_.erase(it);
-    } else {
-      ++it;
-    }
+  for (auto& pending : slots_) {
+    if (pending->id == 0 || pending->when <= now) continue;
+    scheduler_.cancel(pending->event);
+    release(*pending);
   }
 }
 
 TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
                                              std::function<void()> callback) {
   if (!running_ || tick_of(cycle_time) <= ticks_.count_through(now_edge())) return 0;
-  const CycleEvent id = next_id_++;
-  Pending& pending = pending_[id];
+  std::uint32_t index;
+  if (!free_slots_.empty()) {
+    index = free_slots_.back();
+    free_slots_.pop_back();
+  } else {
+    if (slots_.size() + 1 >= (std::size_t{1} << kIndexBits)) {
+      throw std::length_error("TimeBase: too many pending cycle-time events");
+    }
+    index = static_cast<std::uint32_t>(slots_.size());
+    slots_.push_back(std::make_unique<Pending>());
+    slots_.back()->owner = this;
+  }
+  Pending& pending = *slots_[index];
+  pending.id = next_sequence_++ << kIndexBits | (index + 1u);
   pending.cycle_time = cycle_time;
   pending.callback = std::move(callback);
-  schedule(id, pending);
-  return id;
+  schedule(pending);
+  return pending.id;
 }
 
-void TimeBase::schedule(CycleEvent id, Pending& pending) {
+void TimeBase::schedule(Pending& pending) {
   pending.when = mclk_.time_of(ticks_.edge_of(tick_of(pending.cycle_time)));
-  pending.event = scheduler_.at(pending.when, [this, id] {
-    auto found = pending_.find(id);
-    if (found == pending_.end()) return;
-    auto callback = std::move(found->second.callback);
-    pending_.erase(found);
-    callback();
-  });
+  pending.event = scheduler_.at(pending.when, &TimeBase::fire, &pending);
+}
+
+// The slot is freed before the callback runs: the callback may ask for new events.
+void TimeBase::fire(void* context) {
+  auto& pending = *static_cast<Pending*>(context);
+  auto callback = std::move(pending.callback);
+  pending.owner->release(pending);
+  callback();
 }
 
 void TimeBase::cancel(CycleEvent event) {
-  auto found = pending_.find(event);
-  if (found == pending_.end()) return;
-  scheduler_.cancel(found->second.event);
-  pending_.erase(found);
+  Pending* pending = find(event);
+  if (pending == nullptr) return;
+  scheduler_.cancel(pending->event);
+  release(*pending);
 }
 
 std::optional<sim::Time> TimeBase::when(CycleEvent event) const {
-  auto found = pending_.find(event);
-  if (found == pending_.end()) return std::nullopt;
-  return found->second.when;
+  const Pending* pending = find(event);
+  if (pending == nullptr) return std::nullopt;
+  return pending->when;
 }
 
 std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) const {
@@ -167,10 +197,18 @@ void TimeBase::on_register_change(std::uint8_t address) {
   const Edge edge = mclk_.first_at_or_after(scheduler_.now());
   ticks_.change_period(edge, tick_period());
   free_.change_period(edge, tick_period());
-  for (auto& [id, pending] : pending_) {
-    if (pending.when <= mclk_.time_of(edge)) continue;  // its tick is before the change
-    scheduler_.cancel(pending.event);
-    schedule(id, pending);
+  // Rescheduled in the order they were asked for (ids increase), so events that now
+  // share a time run in that order.
+  std::vector<Pending*> moved;
+  for (auto& pending : slots_) {
+    if (pending->id == 0 || pending->when <= mclk_.time_of(edge)) continue;  // tick before
+    moved.push_back(pending.get());
+  }
+  std::sort(moved.begin(), moved.end(),
+            [](const Pending* a, const Pending* b) { return a->id < b->id; });
+  for (Pending* pending : moved) {
+    scheduler_.cancel(pending->event);
+    schedule(*pending);
   }
   for (auto& listener : divider_listeners_) listener(edge, tick_period());
 }

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "timing_bench.hpp"
 
@@ -262,6 +264,41 @@ TEST(TimeBase, CycleTimeEventsRunAtTheStep) {
   ASSERT_EQ(ran.size(), 2u);
   EXPECT_EQ(ran[0], loaded + 3 * t);
   EXPECT_EQ(ran[1], loaded + (3 + 98 * 25) * t);
+}
+
+// Ids stay valid names: one that ran or was cancelled never names a later event (the
+// slot it used is reused), and events at one time run in the order they were asked for,
+// also when an MCLKDIV change moves them all.
+TEST(TimeBase, CycleEventIdsAreNeverReusedAndOrderIsKept) {
+  TimingBench b(config_mhz(25));
+  b.chip.reg_write(kClockDiv, 3 << 8 | 24);
+  b.run_to(5 * kMicrosecond);
+  b.cycles().mst_detected(b.now());
+  b.run_to(6 * kMicrosecond);
+  auto& tb = b.time_base();
+  std::vector<char> ran;
+  const auto first = tb.at_cycle_time(10, [&] { ran.push_back('a'); });
+  const auto second = tb.at_cycle_time(20, [&] { ran.push_back('b'); });
+  ASSERT_NE(first, 0u);
+  tb.cancel(first);
+  const auto third = tb.at_cycle_time(20, [&] { ran.push_back('c'); });  // first's slot
+  EXPECT_NE(third, first);
+  tb.cancel(first);  // stale: cancels nothing
+  EXPECT_EQ(tb.when(first), std::nullopt);
+  ASSERT_TRUE(tb.when(third).has_value());
+  EXPECT_EQ(tb.when(second), tb.when(third));
+  b.chip.reg_write(kClockDiv, 3 << 8 | 49);  // 2 µs ticks: both move
+  EXPECT_GT(*tb.when(third), 0);
+  b.run_to(100 * kMicrosecond);
+  EXPECT_EQ(ran, (std::vector<char>{'b', 'c'}));
+  EXPECT_EQ(tb.when(second), std::nullopt);
+  EXPECT_EQ(tb.when(third), std::nullopt);
+  const auto fourth = tb.at_cycle_time(200, [&] { ran.push_back('d'); });
+  tb.cancel(third);
+  tb.cancel(second);
+  EXPECT_TRUE(tb.when(fourth).has_value());
+  b.run_to(1000 * kMicrosecond);
+  EXPECT_EQ(ran, (std::vector<char>{'b', 'c', 'd'}));
 }
 
 // Register table: TSCYC0 for phases 0..2, TSCYC1 for 3..4 (phase = low 3 bits of PHAS0 for

@@ -13,7 +13,7 @@
 
 #include <cstdint>
 #include <functional>
-#include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -94,15 +94,26 @@ class TimeBase : public ChipUnit {
   Edge free_tick_after(sim::Time t, std::int64_t n) const;
 
  private:
+  // Pending events live in reusable slots (no allocation per event once grown). A slot's
+  // address is the scheduler context of its event, so slots are never moved or freed
+  // before the TimeBase. An id is (sequence << kIndexBits) | (index + 1): never reused
+  // (2^44 sequence numbers), so a stale id never matches, and ids still increase in the
+  // order events were asked for.
+  static constexpr int kIndexBits = 20;
   struct Pending {
-    std::int64_t cycle_time;
+    TimeBase* owner = nullptr;
+    CycleEvent id = 0;  // 0: the slot is free
+    std::int64_t cycle_time = 0;
     std::function<void()> callback;
     sim::Scheduler::EventId event;
-    sim::Time when;
+    sim::Time when = 0;
   };
+  static void fire(void* context);
+  Pending* find(CycleEvent id) const;
+  void release(Pending& pending);
   Edge now_edge() const { return mclk_.last_at_or_before(scheduler_.now()); }
   std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
-  void schedule(CycleEvent id, Pending& pending);
+  void schedule(Pending& pending);
   void drop_future_events();
   void cancel_all();
   void begin(CycleKind kind);
@@ -117,8 +128,9 @@ class TimeBase : public ChipUnit {
   std::int64_t base_ = 0;     // counter value before the first tick of ticks_
   DividerTicks ticks_;        // the cycle counter's divider
   DividerTicks free_;         // the free-running divider
-  CycleEvent next_id_ = 1;
-  std::map<CycleEvent, Pending> pending_;
+  CycleEvent next_sequence_ = 1;
+  std::vector<std::unique_ptr<Pending>> slots_;
+  std::vector<std::uint32_t> free_slots_;
   std::vector<std::function<void(const CycleStart&)>> cycle_listeners_;
   std::vector<std::function<void(Edge, std::int64_t)>> divider_listeners_;
 };
