@@ -51,31 +51,22 @@ std::size_t Rs485Bus::attach(chip::SerialUnit& unit, unsigned txd_pin) {
   return n;
 }
 
-void Rs485Bus::check(Driver& d, sim::Time at) const {
-  if (at < scheduler_.now() || at < d.last) {
-    throw std::invalid_argument("Rs485Bus: a change at " + std::to_string(at) +
-                                " ps is in the past or out of time order");
-  }
-  d.last = at;
-}
-
-void Rs485Bus::Driver::line_condition(sim::Time at, LineCondition, sim::Time) {
-  bus_.check(*this, at);
-  bus_.at_bus_time(at, [b = &bus_, n = node_, at] { b->release(n, at); });
+void Rs485Bus::Driver::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
+  settled_.line_condition(at, condition, period);
 }
 
 void Rs485Bus::Driver::line_burst(const LineBurst& burst) {
   if (!burst.bits || burst.bit_period <= 0) {
     throw std::invalid_argument("Rs485Bus: a burst needs bits and a bit period > 0");
   }
-  bus_.check(*this, burst.start);
-  bus_.at_bus_time(burst.start, [b = &bus_, n = node_, burst] { b->drive(n, burst); });
+  settled_.line_burst(burst);
 }
 
-void Rs485Bus::at_bus_time(sim::Time at, std::function<void()> what) {
-  if (at == scheduler_.now()) return what();
-  keep(scheduler_.at(at, std::move(what)));
+void Rs485Bus::Driver::Now::line_condition(sim::Time at, LineCondition, sim::Time) {
+  bus_.release(node_, at);
 }
+
+void Rs485Bus::Driver::Now::line_burst(const LineBurst& burst) { bus_.drive(node_, burst); }
 
 void Rs485Bus::keep(sim::Scheduler::EventId id) {
   if (events_.size() > 64) {
@@ -89,16 +80,14 @@ void Rs485Bus::tell(std::size_t receiver, sim::Time at, const LineBurst* burst) 
   if (!burst && node.silent) return;
   node.silent = !burst;
   chip::LineListener* listener = node.receiver;
+  // An announcement (line.hpp): the receiver keeps it until `delay` has passed.
   const sim::Time far = at + delay_;
   if (burst) {
     LineBurst b = *burst;
     b.start = far;
-    if (far == scheduler_.now()) return listener->line_burst(b);
-    keep(scheduler_.at(far, [listener, b] { listener->line_burst(b); }));
+    listener->line_burst(b);
   } else {
-    if (far == scheduler_.now()) return listener->line_condition(far, LineCondition::Dark, 0);
-    keep(scheduler_.at(far,
-                       [listener, far] { listener->line_condition(far, LineCondition::Dark, 0); }));
+    listener->line_condition(far, LineCondition::Dark, 0);
   }
 }
 

@@ -12,12 +12,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/settled_line.hpp"
 #include "sercon/sim/scheduler.hpp"
 
 namespace sercon::ring {
@@ -45,16 +45,30 @@ class Rs485Bus {
     std::size_t node;
     chip::LineBurst burst;
   };
+  // A node's driver: what its transmitter announces (line.hpp) is checked, then waits in a
+  // SettledLine until it happens; the bus arbitrates drivers at that moment ("now").
   class Driver final : public chip::LineListener {
    public:
-    Driver(Rs485Bus& bus, std::size_t node) : bus_(bus), node_(node) {}
+    Driver(Rs485Bus& bus, std::size_t node) : now_(bus, node), settled_(bus.scheduler_, now_) {}
+    // std::invalid_argument for a time before now or a burst without bits or bit period;
+    // a later announcement supersedes what was announced for its time and later.
     void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
     void line_burst(const chip::LineBurst& burst) override;
-    sim::Time last = 0;  // time order of this driver's changes
 
    private:
-    Rs485Bus& bus_;
-    std::size_t node_;
+    // Takes each change at its time.
+    class Now final : public chip::LineListener {
+     public:
+      Now(Rs485Bus& bus, std::size_t node) : bus_(bus), node_(node) {}
+      void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
+      void line_burst(const chip::LineBurst& burst) override;
+
+     private:
+      Rs485Bus& bus_;
+      std::size_t node_;
+    };
+    Now now_;
+    chip::SettledLine settled_;
   };
   struct Node {
     chip::LineListener* receiver;
@@ -62,14 +76,12 @@ class Rs485Bus {
     bool silent;  // last told: Dark
   };
 
-  void check(Driver& d, sim::Time at) const;
-  void at_bus_time(sim::Time at, std::function<void()> what);  // now, or scheduled
   void keep(sim::Scheduler::EventId id);
   void drive(std::size_t node, const chip::LineBurst& burst);  // at burst.start (bus time)
   void release(std::size_t node, sim::Time at);                // the node announced a condition
   void settle(sim::Time at);  // a burst ended: silence where nobody drives
   void drop_finished(sim::Time at);
-  // Tells a receiver, delay later, a burst or (nullptr) silence.
+  // Announces to a receiver, for `delay` later, a burst or (nullptr) silence.
   void tell(std::size_t receiver, sim::Time at, const chip::LineBurst* burst);
   std::vector<const Drive*> heard_by(std::size_t receiver) const;
   // The wired OR of `drives` from `at` to the latest end, sampled mid-bit at `period`.
