@@ -95,16 +95,31 @@ TEST(Reset, OutzFloatsEveryOutputButNdtroAndResets) {
   expect_reset_state(chip);
 }
 
-// An output a unit drives while OUTZ = 1 appears when OUTZ returns to 0.
+// An output a unit drives while OUTZ = 1 appears when OUTZ returns to 0. (DMAREQR: a pin
+// its unit sets by set_output; IDLE and RECACTN are computed when read, below.)
 TEST(Reset, OutputsDrivenDuringOutzAppearAfter) {
   ChipOnBench bench;
   Chip& chip = *bench.chip;
   chip.drive(Pin::OUTZ, Level::High);
-  chip.set_output(Pin::IDLE, Level::Low);
-  EXPECT_EQ(chip.pin(Pin::IDLE).level(), Level::HighZ);
+  chip.set_output(Pin::DMAREQR, Level::High);
+  EXPECT_EQ(chip.pin(Pin::DMAREQR).level(), Level::HighZ);
   chip.drive(Pin::OUTZ, Level::Low);
   // Leaving OUTZ is no new reset: the level set during it stays.
-  EXPECT_EQ(chip.pin(Pin::IDLE).level(), Level::Low);
+  EXPECT_EQ(chip.pin(Pin::DMAREQR).level(), Level::High);
+}
+
+// Datasheet Table 1: OUTZ = 1 puts every output into high impedance, also the pins computed
+// when read (IDLE, RECACTN: docs/serial-and-ring.md "IDLE and RECACTN are computed when
+// read"); after OUTZ they show the serial unit's state again (no telegram: both high).
+TEST(Reset, LazyPinsAreHighZDuringOutzAndFollowTheUnitAfter) {
+  ChipOnBench bench;
+  Chip& chip = *bench.chip;
+  chip.drive(Pin::OUTZ, Level::High);
+  EXPECT_EQ(chip.pin(Pin::IDLE).level(), Level::HighZ);
+  EXPECT_EQ(chip.pin(Pin::RECACTN).level(), Level::HighZ);
+  chip.drive(Pin::OUTZ, Level::Low);
+  EXPECT_EQ(chip.pin(Pin::IDLE).level(), Level::High);
+  EXPECT_EQ(chip.pin(Pin::RECACTN).level(), Level::High);
 }
 
 // Datasheet 3.3: OUTZ has an internal pull-up: floating OUTZ means high impedance.

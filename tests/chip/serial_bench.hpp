@@ -10,6 +10,7 @@
 #include "chip_fixture.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/settled_line.hpp"
 #include "sercon/wire/encoder.hpp"
 
 namespace sercon::chip::testing {
@@ -38,11 +39,14 @@ inline constexpr std::uint16_t kRecact = 1u << 14;
 inline constexpr std::uint16_t kIntRdist = 1u << 0;
 inline constexpr std::uint16_t kIntFibbr = 1u << 1;
 
-// Everything a line listener is told, with the scheduler's time of the call.
+// What a line carries, change by change, with the scheduler's time of each change. The
+// announcements (line.hpp) go through a SettledLine first, so each change is logged at the
+// moment it happens and superseded announcements never appear: the log is the line as it
+// really is (docs/serial-and-ring.md, "Per telegram, not per bit").
 class LineRecorder : public LineListener {
  public:
   struct Event {
-    sim::Time now = 0;  // when the call came
+    sim::Time now = 0;  // when the change happened on the line
     bool burst = false;
     LineCondition condition = LineCondition::Dark;
     sim::Time at = 0;  // condition time or burst start
@@ -50,15 +54,15 @@ class LineRecorder : public LineListener {
     std::shared_ptr<const wire::LineBits> bits;
   };
 
-  explicit LineRecorder(const sim::Scheduler& scheduler) : scheduler_(scheduler) {}
+  explicit LineRecorder(sim::Scheduler& scheduler)
+      : scheduler_(scheduler), log_(*this), settled_(scheduler, log_) {}
+  LineRecorder(const LineRecorder&) = delete;
+  LineRecorder& operator=(const LineRecorder&) = delete;
 
   void line_condition(sim::Time at, LineCondition condition, sim::Time period) override {
-    events.push_back(Event{scheduler_.now(), false, condition, at, period, nullptr});
+    settled_.line_condition(at, condition, period);
   }
-  void line_burst(const LineBurst& b) override {
-    events.push_back(
-        Event{scheduler_.now(), true, LineCondition::Idle, b.start, b.bit_period, b.bits});
-  }
+  void line_burst(const LineBurst& b) override { settled_.line_burst(b); }
 
   std::vector<Event> bursts() const {
     std::vector<Event> out;
@@ -79,7 +83,24 @@ class LineRecorder : public LineListener {
   std::vector<Event> events;
 
  private:
+  class Log final : public LineListener {
+   public:
+    explicit Log(LineRecorder& r) : r_(r) {}
+    void line_condition(sim::Time at, LineCondition condition, sim::Time period) override {
+      r_.events.push_back(Event{r_.scheduler_.now(), false, condition, at, period, nullptr});
+    }
+    void line_burst(const LineBurst& b) override {
+      r_.events.push_back(
+          Event{r_.scheduler_.now(), true, LineCondition::Idle, b.start, b.bit_period, b.bits});
+    }
+
+   private:
+    LineRecorder& r_;
+  };
+
   const sim::Scheduler& scheduler_;
+  Log log_;
+  SettledLine settled_;
 };
 
 // Every level change of one pin, with its time.

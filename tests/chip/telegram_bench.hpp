@@ -16,6 +16,7 @@
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/settled_line.hpp"
 #include "sercon/chip/telegram_processor.hpp"
 #include "sercon/sim/scheduler.hpp"
 #include "sercon/wire/decoder.hpp"
@@ -37,26 +38,23 @@ struct Seen {
 };
 
 // A fibre from a TxD to an RxD with a fixed delay; optionally flips one line bit of the
-// n-th telegram it carries (a bit error on the way).
+// n-th telegram it carries (a bit error on the way). It passes each announcement (line.hpp)
+// on at once; `seen` logs the telegrams that really leave the chip, each when it starts
+// (through a SettledLine: one taken back before it starts never appears).
 class TestFibre final : public LineListener {
  public:
-  TestFibre(Time delay, LineListener* target) : delay_(delay), target_(target) {}
+  TestFibre(sim::Scheduler& scheduler, Time delay, LineListener* target)
+      : delay_(delay), target_(target), log_(*this), settled_(scheduler, log_) {}
+  TestFibre(const TestFibre&) = delete;
+  TestFibre& operator=(const TestFibre&) = delete;
 
   void line_condition(Time at, LineCondition condition, Time bit_period) override {
+    settled_.line_condition(at, condition, bit_period);
     if (target_) target_->line_condition(at + delay_, condition, bit_period);
   }
   void line_burst(const LineBurst& burst) override {
-    Seen s;
-    s.start = burst.start;
-    s.end = burst.end();
-    const auto decode = decode_burst(burst.bits);
-    if (!decode->frames.empty()) {
-      s.address = decode->frames.front().address;
-      s.data = decode->frames.front().data;
-      s.ok = decode->frames.front().ok();
-    }
+    settled_.line_burst(burst);
     const bool corrupt = corrupt_countdown_ > 0 && --corrupt_countdown_ == 0;
-    seen.push_back(std::move(s));
     if (!target_) return;
     LineBurst out = burst;
     out.start += delay_;
@@ -82,10 +80,34 @@ class TestFibre final : public LineListener {
   std::vector<Seen> seen;
 
  private:
+  // Takes each telegram when it starts.
+  class Log final : public LineListener {
+   public:
+    explicit Log(TestFibre& fibre) : fibre_(fibre) {}
+    void line_condition(Time, LineCondition, Time) override {}
+    void line_burst(const LineBurst& burst) override {
+      Seen s;
+      s.start = burst.start;
+      s.end = burst.end();
+      const auto decode = decode_burst(burst.bits);
+      if (!decode->frames.empty()) {
+        s.address = decode->frames.front().address;
+        s.data = decode->frames.front().data;
+        s.ok = decode->frames.front().ok();
+      }
+      fibre_.seen.push_back(std::move(s));
+    }
+
+   private:
+    TestFibre& fibre_;
+  };
+
   Time delay_;
   LineListener* target_;
   unsigned corrupt_countdown_ = 0;
   std::size_t corrupt_bit_ = 0;
+  Log log_;
+  SettledLine settled_;
 };
 
 // Timing registers of one rate as a real driver computes them (facts §5): MCLKDIV gives
@@ -125,7 +147,7 @@ class Ring {
     }
     for (std::size_t i = 0; i < chips; ++i) {
       Station& next = stations[(i + 1) % chips];
-      fibres.push_back(std::make_unique<TestFibre>(fibre_delay, &next.serial->rxd()));
+      fibres.push_back(std::make_unique<TestFibre>(scheduler, fibre_delay, &next.serial->rxd()));
     }
     for (std::size_t i = 0; i < chips; ++i) stations[i].serial->connect_txd(1, *fibres[i]);
   }

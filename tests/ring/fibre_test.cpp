@@ -1,13 +1,16 @@
 // Fibre (docs/serial-and-ring.md, "Fibre"): delay = length x ps per metre (default 5 ns/m,
-// project decision), delivery scheduled at the far end's time with the same bits, breaks
-// (datasheet Table 1 L_ERRN: "when the receive signal is missing"; facts §5 FIBBR "fibre
-// broken / ring open") and restores at any time.
+// project decision), each announcement (line.hpp) passed on at once with its time moved by
+// the delay and the same bits (the recorders here log each change when it happens at the
+// far end), breaks (datasheet Table 1 L_ERRN: "when the receive signal is missing"; facts
+// §5 FIBBR "fibre broken / ring open") and restores at any time.
 #include "sercon/ring/fibre.hpp"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "ring_bench.hpp"
@@ -64,18 +67,145 @@ TEST(Fibre, DeliversEachChangeAtTheFarEndWhenItHappens) {
   EXPECT_EQ(far.events[3].condition, LineCondition::Dark);
 }
 
-// Line contract (line.hpp): "Calls come in time order per line"; bad input is refused.
-TEST(Fibre, RefusesChangesOutOfOrderOrInThePast) {
+// Line contract (line.hpp, docs "Per telegram, not per bit"): malformed changes and a
+// change before now are refused, the message naming the time. A change announced for an
+// earlier time than one before it is no error: the later word wins, the far end never sees
+// the overtaken one.
+TEST(Fibre, RefusesMalformedChangesOrChangesBeforeNow) {
   sim::Scheduler s;
-  Fibre f(s, 1.0);
+  Fibre f(s, 1.0);  // 5 ns
+  Recorder far(s);
+  f.connect(far);
   f.input().line_condition(1000, LineCondition::Idle, 62'500);
-  EXPECT_THROW(f.input().line_condition(999, LineCondition::Dark, 0), std::invalid_argument);
+  EXPECT_NO_THROW(f.input().line_condition(999, LineCondition::Dark, 0));
   EXPECT_THROW(f.input().line_burst(LineBurst{2000, 62'500, nullptr}), std::invalid_argument);
   EXPECT_THROW(f.input().line_condition(2000, LineCondition::ZeroBits, 0), std::invalid_argument);
   s.run_until(5000);
-  EXPECT_THROW(f.input().line_condition(4000, LineCondition::Dark, 0), std::invalid_argument);
+  try {
+    f.input().line_condition(4000, LineCondition::Dark, 0);
+    ADD_FAILURE() << "a change before now was taken";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("4000 ps is before now"), std::string::npos) << what;
+  }
+  EXPECT_THROW(f.input().line_burst(LineBurst{4999, 62'500, telegram_bits(1, kData)}),
+               std::invalid_argument);
   EXPECT_THROW(f.break_at(4000), std::invalid_argument);
   EXPECT_THROW(f.restore_at(4000), std::invalid_argument);
+  s.run_until(100'000);
+  for (const auto& e : far.events) {
+    EXPECT_EQ(e.condition, LineCondition::Dark) << "at " << e.at;  // the Idle was overtaken
+    EXPECT_EQ(e.now, e.at);
+  }
+  ASSERT_EQ(far.events.size(), 2u);  // the far end at connect, then the Dark at 999 + 5 ns
+  EXPECT_EQ(far.events[1].at, 999 + 5000);
+}
+
+// Docs "Fibre": a fibre schedules nothing; each announcement goes to the far end at once
+// (line.hpp "The later word wins"). A Dark announced after a telegram, for a time inside
+// it, cuts it there at the far end; a telegram overtaken before it starts never arrives.
+TEST(Fibre, ALaterAnnouncementSupersedesWhatIsOnItsWay) {
+  sim::Scheduler s;
+  Fibre f(s, 20.0);  // 100 ns
+  struct Raw final : chip::LineListener {
+    void line_condition(Time, LineCondition, Time) override { ++calls; }
+    void line_burst(const LineBurst&) override { ++calls; }
+    int calls = 0;
+  } raw;
+  f.connect(raw);
+  const int at_connect = raw.calls;
+  const auto bits = telegram_bits(1, kData);
+  const Time len = static_cast<Time>(bits->size()) * 62'500;
+  f.input().line_condition(0, LineCondition::Idle, 62'500);
+  f.input().line_burst(LineBurst{1'000'000, 62'500, bits});
+  EXPECT_EQ(raw.calls, at_connect + 2);  // passed on within the calls, nothing scheduled
+  EXPECT_EQ(s.pending_count(), 0u);
+
+  Fibre g(s, 20.0);
+  Recorder far(s);
+  g.connect(far);
+  g.input().line_condition(0, LineCondition::Idle, 62'500);
+  g.input().line_burst(LineBurst{1'000'000, 62'500, bits});
+  g.input().line_condition(1'000'000 + len / 2, LineCondition::Dark, 0);  // cuts it
+  g.input().line_burst(LineBurst{9'000'000, 62'500, bits});
+  g.input().line_condition(8'000'000, LineCondition::Idle, 62'500);  // overtakes it
+  s.run_until(20'000'000);
+  ASSERT_EQ(far.events.size(), 5u);
+  EXPECT_EQ(far.events[1].at, 100'000);
+  EXPECT_EQ(far.events[1].condition, LineCondition::Idle);
+  EXPECT_TRUE(far.events[2].burst);
+  EXPECT_EQ(far.events[2].at, 1'100'000);
+  EXPECT_EQ(far.events[2].bits.get(), bits.get());
+  EXPECT_FALSE(far.events[3].burst);
+  EXPECT_EQ(far.events[3].condition, LineCondition::Dark);
+  EXPECT_EQ(far.events[3].at, 1'100'000 + len / 2);
+  EXPECT_FALSE(far.events[4].burst);
+  EXPECT_EQ(far.events[4].condition, LineCondition::Idle);
+  EXPECT_EQ(far.events[4].at, 8'100'000);
+  for (const auto& e : far.events) EXPECT_EQ(e.now, e.at);
+}
+
+// Docs "Fibre", break / restore: the break darkens the far end and takes back what was on
+// its way; the restore gives the present condition at once and then what is still on its
+// way (it entered before the restore and arrives after it), also what entered while the
+// fibre was broken. A 4 km fibre (20 us) holds whole telegrams: one entered before the
+// break, one entered while broken; the fibre is restored before either arrives, and both
+// arrive whole at their exact times.
+TEST(Fibre, RestoreRedeliversWhatIsStillOnItsWay) {
+  sim::Scheduler s;
+  chip::Chip rx(s, chip::ChipConfig{});
+  Ear ear(rx);
+  auto& unit = *rx.unit<chip::SerialUnit>();
+  const Time t = unit.bit_period();
+  Fibre to_chip(s, 4000.0);
+  Fibre to_recorder(s, 4000.0);
+  const Time d = to_chip.delay();
+  ASSERT_EQ(d, 20'000'000);
+  Recorder far(s);
+  to_chip.connect(unit.rxd());
+  to_recorder.connect(far);
+  const auto both = [&](auto&& what) {
+    what(to_chip);
+    what(to_recorder);
+  };
+  both([&](Fibre& f) { f.input().line_condition(0, LineCondition::Idle, t); });
+  const auto bits = telegram_bits(0x42, kData);
+  const Time len = static_cast<Time>(bits->size()) * t;
+  const Time in1 = 1000 * t;
+  const Time broken = in1 + d / 4, restored = in1 + 3 * d / 4;
+  const Time in2 = in1 + len + 30 * t;  // enters while broken
+  ASSERT_GT(in2, broken);
+  ASSERT_LT(in2, restored);
+  s.run_until(in1);
+  both([&](Fibre& f) {
+    f.input().line_burst(LineBurst{in1, t, bits});
+    f.break_at(broken);
+    f.restore_at(restored);
+  });
+  s.run_until(in2);
+  EXPECT_TRUE(to_chip.broken());
+  both([&](Fibre& f) { f.input().line_burst(LineBurst{in2, t, bits}); });
+  s.run_until(in2 + d + len + 200 * t);
+  EXPECT_FALSE(to_chip.broken());
+  ASSERT_EQ(ear.heard.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Time arrival = (i == 0 ? in1 : in2) + d;
+    EXPECT_TRUE(ear.heard[i].frame.ok()) << i;
+    EXPECT_EQ(ear.heard[i].start, arrival) << i;
+    EXPECT_EQ(ear.heard[i].end, arrival + len) << i;
+  }
+  // The line as the far end had it: Dark (connect), Idle, Dark at the break, Idle at the
+  // restore, then the two telegrams at their times.
+  std::vector<std::pair<Time, bool>> changes;
+  for (const auto& e : far.events) {
+    EXPECT_EQ(e.now, e.at);
+    changes.emplace_back(e.at, e.burst);
+  }
+  const std::vector<std::pair<Time, bool>> expected = {
+      {0, false}, {d, false}, {broken, false}, {restored, false}, {in1 + d, true}, {in2 + d, true}};
+  EXPECT_EQ(changes, expected);
+  EXPECT_EQ(far.events[2].condition, LineCondition::Dark);
+  EXPECT_EQ(far.events[3].condition, LineCondition::Idle);
 }
 
 // A break in the middle of a telegram cuts it at the break instant: the receiver decodes an

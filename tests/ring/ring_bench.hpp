@@ -10,6 +10,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/settled_line.hpp"
 #include "sercon/wire/encoder.hpp"
 
 namespace sercon::ring::testing {
@@ -33,10 +34,13 @@ struct Heard {
   wire::DecodedFrame frame;
 };
 
-// Everything one chip's receiver reports.
+// Everything one chip's receiver reports. The ear takes the telegram processor's place as
+// the receiver's client, so it takes back the processor's ReceiveInterest as well: every
+// report is made (docs/serial-and-ring.md, "Receiver", "Only wanted reports").
 struct Ear {
   explicit Ear(chip::Chip& c) {
     auto* unit = c.unit<chip::SerialUnit>();
+    unit->set_interest(nullptr);
     unit->on_telegram([this, &c](const chip::ReceivedTelegram& t) {
       heard.push_back({c.scheduler().now(), t.start, t.end, t.detected, t.frame});
     });
@@ -64,7 +68,9 @@ inline std::shared_ptr<const wire::LineBits> telegram_bits(std::uint8_t address,
   return std::make_shared<const wire::LineBits>(encoder.take());
 }
 
-// Records what a line listener is told.
+// Records what a line carries, change by change: the announcements (line.hpp) go through
+// a SettledLine, so each change is logged at the moment it happens (`now`) and superseded
+// announcements never appear (docs/serial-and-ring.md, "Per telegram, not per bit").
 class Recorder : public chip::LineListener {
  public:
   struct Event {
@@ -75,18 +81,34 @@ class Recorder : public chip::LineListener {
     sim::Time period = 0;
     std::shared_ptr<const wire::LineBits> bits;
   };
-  explicit Recorder(const sim::Scheduler& s) : scheduler_(s) {}
+  explicit Recorder(sim::Scheduler& s) : scheduler_(s), log_(*this), settled_(s, log_) {}
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
   void line_condition(sim::Time at, chip::LineCondition c, sim::Time period) override {
-    events.push_back({scheduler_.now(), false, c, at, period, nullptr});
+    settled_.line_condition(at, c, period);
   }
-  void line_burst(const chip::LineBurst& b) override {
-    events.push_back(
-        {scheduler_.now(), true, chip::LineCondition::Idle, b.start, b.bit_period, b.bits});
-  }
+  void line_burst(const chip::LineBurst& b) override { settled_.line_burst(b); }
   std::vector<Event> events;
 
  private:
+  class Log final : public chip::LineListener {
+   public:
+    explicit Log(Recorder& r) : r_(r) {}
+    void line_condition(sim::Time at, chip::LineCondition c, sim::Time period) override {
+      r_.events.push_back({r_.scheduler_.now(), false, c, at, period, nullptr});
+    }
+    void line_burst(const chip::LineBurst& b) override {
+      r_.events.push_back(
+          {r_.scheduler_.now(), true, chip::LineCondition::Idle, b.start, b.bit_period, b.bits});
+    }
+
+   private:
+    Recorder& r_;
+  };
+
   const sim::Scheduler& scheduler_;
+  Log log_;
+  chip::SettledLine settled_;
 };
 
 }  // namespace sercon::ring::testing

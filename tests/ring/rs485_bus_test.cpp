@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ring_bench.hpp"
@@ -119,7 +120,9 @@ TEST(Rs485Bus, ASenderSwitchedOffMidTelegramCutsIt) {
   EXPECT_EQ(b.ear(1).heard[0].end, 130 * t + kDelay);
 }
 
-// Line contract (line.hpp): time order per line, bursts with bits; a negative delay.
+// Line contract (line.hpp): bursts with bits, a change before now is refused (the message
+// naming the time), a negative delay. A change announced for an earlier time than one
+// before it supersedes it (the later word wins), it is no error.
 TEST(Rs485Bus, RefusesBadInput) {
   sim::Scheduler s;
   EXPECT_THROW(Rs485Bus(s, -1), std::invalid_argument);
@@ -129,8 +132,46 @@ TEST(Rs485Bus, RefusesBadInput) {
   EXPECT_THROW(bus.driver(n + 1), std::out_of_range);
   EXPECT_THROW(bus.driver(n).line_burst(chip::LineBurst{0, 62'500, nullptr}),
                std::invalid_argument);
+  EXPECT_THROW(bus.driver(n).line_burst(chip::LineBurst{500, 0, testing::telegram_bits(1, kData)}),
+               std::invalid_argument);  // refused when announced, not when due
   bus.driver(n).line_condition(100, LineCondition::Idle, 62'500);
-  EXPECT_THROW(bus.driver(n).line_condition(50, LineCondition::Dark, 0), std::invalid_argument);
+  EXPECT_NO_THROW(bus.driver(n).line_condition(50, LineCondition::Dark, 0));
+  s.run_until(1000);
+  try {
+    bus.driver(n).line_condition(999, LineCondition::Dark, 0);
+    ADD_FAILURE() << "a change before now was taken";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("999 ps is before now"), std::string::npos) << what;
+  }
+}
+
+// The bus arbitrates drivers at the moment they drive (rs485_bus.hpp): what a transmitter
+// announces goes through a SettledLine (docs "Per telegram, not per bit"), so a telegram
+// announced for later and overtaken before it starts (here by a reset of its chip, which
+// darkens TxD: docs "Transmitter", "A reset drops telegrams not yet sent") never reaches
+// the bus: no other node hears it, no collision with the telegram that is sent.
+TEST(Rs485Bus, ATelegramTakenBackBeforeItStartsNeverReachesTheBus) {
+  BusBench b;
+  const Time t = b.unit(0).bit_period();
+  b.unit(0).send(1000 * t, 0x05, kData);  // announced now for 1000 t
+  b.s.run_until(500 * t);
+  b.chips[0]->software_reset();
+  b.s.run_until(520 * t);
+  const Time end = b.unit(1).send(1020 * t, 0x06, kData);
+  b.s.run_until(end + 1000 * t);
+  EXPECT_EQ(b.bus.collisions(), 0u);
+  for (int i : {0, 2}) {
+    ASSERT_EQ(b.ear(i).heard.size(), 1u) << i;
+    EXPECT_TRUE(b.ear(i).heard[0].frame.ok()) << i;
+    EXPECT_EQ(b.ear(i).heard[0].frame.address, 0x06) << i;
+  }
+  for (const auto& e : b.tap.events) {
+    EXPECT_EQ(e.now, e.at);
+    if (e.burst) {
+      EXPECT_EQ(e.at, 1020 * t + kDelay);
+    }
+  }
 }
 
 }  // namespace
