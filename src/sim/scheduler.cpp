@@ -63,20 +63,9 @@ void Scheduler::free_slot(std::uint32_t index) {
   free_slots_.push_back(index);
 }
 
-const Scheduler::Slot* Scheduler::live_slot(EventId id) const {
-  const std::uint64_t index = (id.value & 0xFFFF'FFFFu);
-  if (index == 0 || index > slots_.size()) return nullptr;
-  const Slot& slot = slots_[index - 1];
-  if (!slot.live || slot.generation != static_cast<std::uint32_t>(id.value >> 32)) return nullptr;
-  return &slot;
-}
-
-bool Scheduler::cancel(EventId id) {
-  if (live_slot(id) == nullptr) return false;
-  const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
+void Scheduler::release(std::uint32_t index) {
   slots_[index].callback = nullptr;  // release what it captured now
   free_slot(index);
-  return true;
 }
 
 bool Scheduler::top_is_live() const {

@@ -39,7 +39,12 @@ class Scheduler {
   }
 
   // Forgets a pending event. Returns false if it already ran or was cancelled.
-  bool cancel(EventId id);
+  // Inline: most calls name an event that already ran.
+  bool cancel(EventId id) {
+    if (live_slot(id) == nullptr) return false;
+    release(static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1));
+    return true;
+  }
   bool pending(EventId id) const { return live_slot(id) != nullptr; }
   std::size_t pending_count() const { return live_count_; }
 
@@ -73,7 +78,16 @@ class Scheduler {
 
   std::uint32_t take_slot(Time when);
   void free_slot(std::uint32_t index);
-  const Slot* live_slot(EventId id) const;
+  void release(std::uint32_t index);  // cancels a live slot
+  const Slot* live_slot(EventId id) const {
+    const std::uint64_t index = (id.value & 0xFFFF'FFFFu);
+    if (index == 0 || index > slots_.size()) return nullptr;
+    const Slot& slot = slots_[index - 1];
+    if (!slot.live || slot.generation != static_cast<std::uint32_t>(id.value >> 32)) {
+      return nullptr;
+    }
+    return &slot;
+  }
   bool top_is_live() const;
   void drop_dead_tops();
   void pop_top();
