@@ -12,12 +12,25 @@ void Signal::set(Level level) {
 }
 
 std::size_t Signal::watch(Watcher watcher) {
+  if (on_watch_) on_watch_();
   watchers_.push_back(std::move(watcher));
   return watchers_.size() - 1;
 }
 
 void Signal::unwatch(std::size_t handle) {
   if (handle < watchers_.size()) watchers_[handle] = nullptr;
+}
+
+bool Signal::watched() const {
+  for (const Watcher& w : watchers_) {
+    if (w) return true;
+  }
+  return false;
+}
+
+void Signal::provide(Provider provider, const void* context) {
+  provider_ = provider;
+  provider_context_ = context;
 }
 
 }  // namespace sercon::sim
