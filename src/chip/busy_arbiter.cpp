@@ -14,7 +14,13 @@ BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, const MclkGrid& mclk, std::u
 BusyArbiter::~BusyArbiter() { scheduler_.cancel(release_event_); }
 
 void BusyArbiter::internal_access(std::uint16_t word) {
-  last_used_.at(word) = period_index(scheduler_.now());
+  // A list walk reads many words in one instant: work out its MCLK period once.
+  const sim::Time now = scheduler_.now();
+  if (now != cached_now_) {
+    cached_now_ = now;
+    cached_period_ = period_index(now);
+  }
+  last_used_.at(word) = cached_period_;
 }
 
 bool BusyArbiter::host_access(std::uint16_t word) {

@@ -50,6 +50,7 @@ void SerialUnit::release() {
   repeater_->release();
   outputs_->refresh();
   monitor_->release();
+  receiver_->release();
 }
 
 sim::Time SerialUnit::compute_bit_period() const {
@@ -63,7 +64,7 @@ std::uint16_t SerialUnit::control_bits() const {
   return static_cast<std::uint16_t>(chip_.regs().value(fields_.txoe.address) & ~status);
 }
 
-// Status bits this unit sets itself (RDIST, FIBBR, RECACT) also land here: they change
+// Status bits this unit sets itself (RDIST, FIBBR) also land here: they change
 // nothing and return early, so a telegram costs no output refresh.
 void SerialUnit::on_register_change(std::uint8_t address) {
   if (!running_) return;
@@ -77,6 +78,7 @@ void SerialUnit::on_register_change(std::uint8_t address) {
     bit_period_ = period;
     repon_ = repon;
     poltxd_ = poltxd;
+    if (rate_changed) receiver_->refresh_rate();
     repeater_->refresh();
     outputs_->refresh();
     if (rate_changed) monitor_->refresh_limits();
@@ -119,6 +121,12 @@ void SerialUnit::on_telegram_start(TelegramStartHandler handler) {
 void SerialUnit::on_telegram(TelegramHandler handler) {
   receiver_->on_telegram(std::move(handler));
 }
+
+void SerialUnit::set_interest(const ReceiveInterest* interest) {
+  receiver_->set_interest(interest);
+}
+
+void SerialUnit::interest_changed() { receiver_->interest_changed(); }
 
 sim::Time SerialUnit::repeated_at(sim::Time arrival) const {
   return repeater_->forward_time(arrival);

@@ -42,6 +42,9 @@ void LineMonitor::refresh_limits() {
   const sim::Time now = unit_.chip().scheduler().now();
   cancel();
   const sim::Time period = unit_.bit_period();
+  // Between bad signals the monitor is not told of changes (the receiver's plan_monitor):
+  // take up what RxD carries now.
+  if (const RxdSegment& in = unit_.receiver().input(); in.since > segment_.since) segment_ = in;
   if (period != period_) {
     // A new rate: judge from now on what RxD carries now (a telegram counts as its fill).
     if (segment_.has_edges() && segment_.period != period_) {

@@ -19,14 +19,35 @@ std::size_t index_of_pin(unsigned pin) {
 
 }  // namespace
 
+TxdOutputs::TxdOutputs(SerialUnit& unit) : unit_(unit) {
+  line_.push_back(RxdSegment::of(0, LineCondition::Dark, 0));
+}
+
+TxdOutputs::~TxdOutputs() { unit_.chip().scheduler().cancel(pins_event_); }
+
+void TxdOutputs::pass_on(LineListener& listener, const RxdSegment& s) {
+  if (s.is_burst) return listener.line_burst(s.burst());
+  listener.line_condition(s.since, s.condition, s.period);
+}
+
+// A listener that joins (or whose pin goes back to the line) gets the line now, then what
+// is announced for later.
+void TxdOutputs::tell_line(LineListener& listener) const {
+  sim::Time period = 0;
+  const LineCondition c = line_condition_now(&period);
+  const sim::Time now = unit_.chip().scheduler().now();
+  listener.line_condition(now, c, period);
+  for (const RxdSegment& s : line_) {
+    if (s.since > now) pass_on(listener, s);
+  }
+}
+
 void TxdOutputs::connect(unsigned pin, LineListener& listener) {
   Output& out = outputs_[index_of_pin(pin)];
   out.listener = &listener;
-  sim::Time period = 0;
   const View& v = out.view;
   if (v.mode == Mode::Line) {
-    const LineCondition c = line_condition_now(&period);
-    listener.line_condition(unit_.chip().scheduler().now(), c, period);
+    tell_line(listener);
   } else {
     listener.line_condition(unit_.chip().scheduler().now(), v.condition, v.period);
   }
@@ -34,37 +55,95 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
 
 void TxdOutputs::disconnect(unsigned pin) { outputs_[index_of_pin(pin)].listener = nullptr; }
 
-LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
-  *period = line_period_;
-  return line_in_burst_ ? LineCondition::Idle : line_;
+const RxdSegment& TxdOutputs::line_now() const {
+  const sim::Time now = unit_.chip().scheduler().now();
+  std::size_t i = line_.size() - 1;
+  while (i > 0 && line_[i].since > now) --i;
+  return line_[i];
 }
 
-void TxdOutputs::line_condition(LineCondition condition, sim::Time period) {
+LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
+  const RxdSegment& s = line_now();
+  *period = s.period;
+  return s.is_burst ? LineCondition::Idle : s.condition;
+}
+
+void TxdOutputs::prune() {
   const sim::Time now = unit_.chip().scheduler().now();
-  if (line_in_burst_ && now >= line_end_) line_in_burst_ = false;
-  if (!line_in_burst_ && line_ == condition && line_period_ == period) return;
-  const bool pins_change = (line_ == LineCondition::Dark) != (condition == LineCondition::Dark);
-  line_ = condition;
-  line_period_ = period;
-  line_in_burst_ = false;
+  while (line_.size() > 1 && line_[1].since <= now) line_.pop_front();
+}
+
+bool TxdOutputs::supersede(sim::Time at) {
+  bool dropped = false;
+  while (!line_.empty() && line_.back().since >= at) {
+    line_.pop_back();
+    dropped = true;
+  }
+  return dropped;
+}
+
+void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
+  prune();
+  const RxdSegment& last = line_.back();
+  if (last.since <= at) {
+    const bool in_burst = last.is_burst && at < last.burst_end();
+    const LineCondition c = last.is_burst ? LineCondition::Idle : last.condition;
+    if (!in_burst && c == condition && last.period == period) return;
+  }
+  const bool dropped = supersede(at);
+  line_.push_back(RxdSegment::of(at, condition, period));
   for (Output& out : outputs_) {
     if (out.view.mode == Mode::Line && out.listener) {
-      out.listener->line_condition(now, condition, period);
+      out.listener->line_condition(at, condition, period);
     }
   }
-  if (pins_change) set_pins_following_line();
+  if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
 void TxdOutputs::line_burst(const LineBurst& burst) {
-  const bool pins_change = line_ == LineCondition::Dark;
-  line_ = LineCondition::Idle;  // what follows the burst
-  line_period_ = burst.bit_period;
-  line_in_burst_ = true;
-  line_end_ = burst.end();
+  prune();
+  const bool dropped = supersede(burst.start);
+  line_.push_back(RxdSegment::of(burst));
   for (Output& out : outputs_) {
     if (out.view.mode == Mode::Line && out.listener) out.listener->line_burst(burst);
   }
-  if (pins_change) set_pins_following_line();
+  if (dropped || darkness_changes_at_back()) plan_pins();
+}
+
+// The pins change only where the line goes dark or lights up; an announcement that does
+// neither (and drops nothing announced before) leaves the plan as it is.
+bool TxdOutputs::darkness_changes_at_back() const {
+  if (line_.size() < 2) return true;
+  const auto dark = [](const RxdSegment& seg) {
+    return !seg.is_burst && seg.condition == LineCondition::Dark;
+  };
+  return dark(line_.back()) != dark(line_[line_.size() - 2]);
+}
+
+bool TxdOutputs::dark_now() const {
+  const RxdSegment& s = line_now();
+  return !s.is_burst && s.condition == LineCondition::Dark;
+}
+
+// The TxD pins show whether there is a signal (light level) or none (dark level): they
+// change only where the line goes dark or lights up, rarely, so an event there is cheap.
+void TxdOutputs::plan_pins() {
+  sim::Scheduler& s = unit_.chip().scheduler();
+  s.cancel(pins_event_);
+  pins_event_ = {};
+  set_pins_following_line();
+  const auto dark = [](const RxdSegment& seg) {
+    return !seg.is_burst && seg.condition == LineCondition::Dark;
+  };
+  for (std::size_t i = 1; i < line_.size(); ++i) {
+    if (dark(line_[i]) == dark(line_[i - 1])) continue;
+    pins_event_ = s.at(line_[i].since, [this] {
+      pins_event_ = {};
+      prune();
+      plan_pins();
+    });
+    return;
+  }
 }
 
 TxdOutputs::View TxdOutputs::view_of(unsigned pin) const {
@@ -114,7 +193,7 @@ sim::Level TxdOutputs::pin_level(const View& v) const {
   }
   // A line with edges is not drawn bit by bit: the pin shows the light level while there
   // is a signal, the dark level while there is none.
-  const bool dark = v.mode == Mode::Dark || (v.mode == Mode::Line && line_ == LineCondition::Dark);
+  const bool dark = v.mode == Mode::Dark || (v.mode == Mode::Line && dark_now());
   return sim::level_of(!dark != f.poltxd.on(regs));
 }
 
@@ -124,13 +203,11 @@ void TxdOutputs::show(unsigned pin, const View& v) {
   if (out.view == v) return;
   out.view = v;
   if (!out.listener) return;
-  const sim::Time now = unit_.chip().scheduler().now();
   if (v.mode == Mode::Line) {
-    sim::Time period = 0;
-    const LineCondition c = line_condition_now(&period);
-    out.listener->line_condition(now, c, period);
+    prune();
+    tell_line(*out.listener);
   } else {
-    out.listener->line_condition(now, v.condition, v.period);
+    out.listener->line_condition(unit_.chip().scheduler().now(), v.condition, v.period);
   }
 }
 

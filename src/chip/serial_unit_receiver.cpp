@@ -11,71 +11,47 @@
 
 namespace sercon::chip {
 
+namespace {
+constexpr sim::Time kNever = LazyPin::kNever;
+// Longest chain of receivers one announcement may run through at once: more than a ring of
+// 255 nodes needs, far less than the stack allows.
+constexpr int kMaxChain = 600;
+thread_local int chain_depth = 0;
+}  // namespace
+
+SerialReceiver::SerialReceiver(SerialUnit& unit)
+    : unit_(unit), recactn_(unit.chip(), Pin::RECACTN, *this) {
+  timeline_.push_back(Entry{RxdSegment{}, 0, 0, nullptr, {}});
+  const FieldRef& recact = unit.fields().recact;
+  unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
+    const bool on = recact_at(unit_.chip().scheduler().now());
+    return static_cast<std::uint16_t>(on ? stored | mask : stored & ~mask);
+  });
+}
+
 SerialReceiver::~SerialReceiver() {
-  cancel_chip_events();
-  for (const auto id : deferred_) unit_.chip().scheduler().cancel(id);
-}
-
-void SerialReceiver::cancel_chip_events() {
   sim::Scheduler& s = unit_.chip().scheduler();
-  for (const Report& r : reports_) s.cancel(r.event);
-  s.cancel(recact_event_);
-  current_ = Current{};
-  reports_.clear();
-  free_reports_.clear();
+  s.cancel(report_event_);
+  s.cancel(monitor_event_);
+  for (const Deferred& d : deferred_) s.cancel(d.event);
 }
 
-std::size_t SerialReceiver::schedule_report(sim::Time when, Report report) {
-  std::size_t slot = reports_.size();
-  if (free_reports_.empty()) {
-    reports_.push_back(std::move(report));
-  } else {
-    slot = free_reports_.back();
-    free_reports_.pop_back();
-    reports_[slot] = std::move(report);
-  }
-  reports_[slot].event = unit_.chip().scheduler().at(when, [this, slot] { fire(slot); });
-  return slot;
+void SerialReceiver::on_start(SerialUnit::TelegramStartHandler handler) {
+  on_start_ = std::move(handler);
+  plan_reports();
 }
 
-void SerialReceiver::cancel_report(std::size_t slot, sim::Scheduler::EventId event) {
-  if (slot == kNone || !unit_.chip().scheduler().cancel(event)) return;
-  reports_[slot] = Report{};
-  free_reports_.push_back(slot);
+void SerialReceiver::on_telegram(SerialUnit::TelegramHandler handler) {
+  on_telegram_ = std::move(handler);
+  plan_reports();
 }
 
-void SerialReceiver::fire(std::size_t slot) {
-  const Report r = std::move(reports_[slot]);
-  reports_[slot] = Report{};
-  free_reports_.push_back(slot);
-  const wire::DecodedFrame& f = r.decode->frames[r.frame];
-  if (r.telegram) {
-    on_telegram_(ReceivedTelegram{r.start, r.end, r.detected, f});
-  } else {
-    on_start_(r.start, f.address);
-  }
+void SerialReceiver::set_interest(const ReceiveInterest* interest) {
+  interest_ = interest;
+  plan_reports();
 }
 
-void SerialReceiver::reset() {
-  cancel_chip_events();
-  recact_ = false;  // the register reset cleared RECACT, the chip's reset RECACTN
-}
-
-void SerialReceiver::release() {}
-
-void SerialReceiver::check_order(sim::Time at) {
-  const sim::Time now = unit_.chip().scheduler().now();
-  if (at < now) {
-    throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
-                                std::to_string(now) + " ps)");
-  }
-  if (at < last_change_) {
-    throw std::invalid_argument("RxD: a change at " + std::to_string(at) +
-                                " ps comes after one at " + std::to_string(last_change_) +
-                                " ps (changes must come in time order)");
-  }
-  last_change_ = at;
-}
+// --- the timeline -------------------------------------------------------------------------
 
 void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::Time bit_period) {
   const bool toggles = condition == LineCondition::Idle || condition == LineCondition::ZeroBits;
@@ -83,13 +59,7 @@ void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::
     throw std::invalid_argument("RxD: " + std::string(to_string(condition)) + " with bit period " +
                                 std::to_string(bit_period) + " ps");
   }
-  check_order(at);
-  const RxdSegment segment = RxdSegment::of(at, condition, toggles ? bit_period : 0);
-  if (at == unit_.chip().scheduler().now()) return take(segment);
-  deferred_.push_back(unit_.chip().scheduler().at(at, [this, segment] {
-    deferred_.pop_front();
-    take(segment);
-  }));
+  announce(RxdSegment::of(at, condition, toggles ? bit_period : 0));
 }
 
 void SerialReceiver::line_burst(const LineBurst& burst) {
@@ -98,135 +68,389 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     throw std::invalid_argument("RxD: a burst with bit period " + std::to_string(burst.bit_period) +
                                 " ps");
   }
-  check_order(burst.start);
-  const RxdSegment segment = RxdSegment::of(burst);
-  if (burst.start == unit_.chip().scheduler().now()) return take(segment);
-  deferred_.push_back(unit_.chip().scheduler().at(burst.start, [this, segment] {
-    deferred_.pop_front();
-    take(segment);
-  }));
+  announce(RxdSegment::of(burst));
 }
 
-void SerialReceiver::take(const RxdSegment& segment) {
+void SerialReceiver::announce(RxdSegment segment) {
   const sim::Time now = unit_.chip().scheduler().now();
-  const bool cuts = current_.active && now < current_.cut;
-  cut_current(now);
-  const RxdSegment before = input_;
-  input_ = segment;
+  const sim::Time at = segment.since;
+  if (at < now) {
+    throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
+                                std::to_string(now) + " ps)");
+  }
+  const bool changed = supersede(at);
+  prune();
+  Entry& e = timeline_.emplace_back();
+  e.cut = segment.is_burst ? segment.burst_end() : at;
+  e.serial = next_serial_++;
+  e.segment = std::move(segment);
   if (!unit_.running()) return;
-  unit_.monitor().input_changed(before, input_);
-  if (segment.is_burst) receive(segment);
-  // Once, after both: a telegram cut by the next one keeps RECACTN low across the seam.
-  if (cuts || segment.is_burst) schedule_recact();
-  unit_.repeater().input(segment);
+  take(e);
+  if (changed) {
+    plan_reports();
+  } else {
+    consider(e);
+  }
+  // Between good signals (the usual case) the monitor has nothing to hear.
+  const bool quiet =
+      timeline_.size() > 1 && good(timeline_[timeline_.size() - 2].segment) && good(e.segment);
+  if (changed || !quiet || at == now) plan_monitor();
+  recactn_.replan();
+  pass_to_repeater(e);
 }
 
-void SerialReceiver::cut_current(sim::Time at) {
-  if (!current_.active) return;
-  current_.active = false;
-  if (at >= current_.cut) return;  // ended whole
-  const auto cut_bit = static_cast<std::size_t>((at - current_.start) / current_.period);
-  const BurstDecode& old = *current_.decode;
-  // Frames whose closing flag came before the cut stand; the rest are decoded again.
+void SerialReceiver::pass_to_repeater(const Entry& e) {
+  if (chain_depth >= kMaxChain) {
+    // Go on when the change reaches RxD: the chain starts again from the scheduler.
+    const std::uint64_t serial = e.serial;
+    std::erase_if(deferred_,
+                  [this](const Deferred& d) { return !unit_.chip().scheduler().pending(d.event); });
+    deferred_.push_back(
+        Deferred{serial, unit_.chip().scheduler().at(
+                             e.segment.since, [this, serial] { forward_deferred(serial); })});
+    return;
+  }
+  ++chain_depth;
+  try {
+    unit_.repeater().input(e.segment);
+  } catch (...) {
+    --chain_depth;
+    throw;
+  }
+  --chain_depth;
+}
+
+// The entry and what was announced after it go again, in order (an entry announced after
+// it went straight on, and must not be overtaken by this late one).
+void SerialReceiver::forward_deferred(std::uint64_t serial) {
+  if (!unit_.running()) return;
+  std::vector<RxdSegment> segments;
+  for (const Entry& e : timeline_) {
+    if (e.serial >= serial) segments.push_back(e.segment);
+  }
+  if (segments.empty()) return;  // superseded meanwhile
+  ++chain_depth;
+  try {
+    for (const RxdSegment& s : segments) unit_.repeater().input(s);
+  } catch (...) {
+    --chain_depth;
+    throw;
+  }
+  --chain_depth;
+}
+
+// The later word wins (line.hpp): what was announced for `at` or later is dropped, and a
+// burst under way at `at` is cut there.
+bool SerialReceiver::supersede(sim::Time at) {
+  bool changed = false;
+  while (!timeline_.empty() && timeline_.back().segment.since >= at) {
+    timeline_.pop_back();
+    changed = true;
+  }
+  if (!timeline_.empty() && timeline_.back().segment.is_burst && at < timeline_.back().cut) {
+    cut(timeline_.back(), at);
+    changed = true;
+  }
+  return changed;
+}
+
+void SerialReceiver::cut(Entry& e, sim::Time at) {
+  if (!e.segment.is_burst || at >= e.cut) return;  // ended whole
+  e.cut = at;
+  if (!e.decode) return;
+  const sim::Time period = e.segment.period;
+  const auto cut_bit = static_cast<std::size_t>((at - e.segment.since) / period);
+  const BurstDecode& old = *e.decode;
+  // Frames whose closing flag came before the cut stand; the rest are decoded again, and a
+  // frame whose address was already reported keeps that report.
   std::size_t first = 0;
   while (first < old.frames.size() && old.frames[first].end_bit <= cut_bit) ++first;
+  std::vector<std::size_t> started;
+  for (std::size_t i = first; i < old.frames.size(); ++i) {
+    if (e.frames[i].start_done) started.push_back(old.frames[i].start_bit);
+  }
+  e.decode = decode_burst_prefix(e.segment.bits, cut_bit);
+  e.frames.resize(first);
+  e.frames.resize(e.decode->frames.size());
+  work_out(e, first);
+  for (std::size_t i = first; i < e.frames.size(); ++i) {
+    const std::size_t start_bit = e.decode->frames[i].start_bit;
+    e.frames[i].start_done = std::find(started.begin(), started.end(), start_bit) != started.end();
+  }
+}
+
+void SerialReceiver::take(Entry& e) {
+  e.decode = nullptr;
+  e.frames.clear();
+  const RxdSegment& s = e.segment;
+  if (!s.is_burst || s.period != unit_.bit_period()) return;  // distorted: the monitor counts it
+  e.decode =
+      s.burst_end() == e.cut
+          ? decode_burst(s.bits)
+          : decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
+  e.frames.resize(e.decode->frames.size());
+  work_out(e, 0);
+}
+
+void SerialReceiver::work_out(Entry& e, std::size_t first) {
+  const BurstDecode& d = *e.decode;
+  const sim::Time since = e.segment.since, period = e.segment.period;
+  for (std::size_t i = first; i < e.frames.size(); ++i) {
+    const wire::DecodedFrame& f = d.frames[i];
+    FrameState& st = e.frames[i];
+    st.start = since + static_cast<sim::Time>(f.start_bit) * period;
+    st.end = std::min(since + static_cast<sim::Time>(f.end_bit) * period, e.cut);
+    st.telegram_report = pipeline(st.end, period);
+    const std::size_t address_end = d.address_end[i];
+    const sim::Time address_in = since + static_cast<sim::Time>(address_end) * period;
+    st.start_report = address_end > f.end_bit || address_in > e.cut  // no whole address
+                          ? kNever
+                          : pipeline(address_in, period);
+  }
+}
+
+// Entries over and done with: a later one is in force and no report of theirs is to come.
+void SerialReceiver::prune() {
+  const sim::Time now = unit_.chip().scheduler().now();
+  while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
+    const Entry& e = timeline_.front();
+    if (e.serial == report_.serial && report_event_.value != 0) return;
+    if (!e.frames.empty() && e.frames.back().telegram_report >= now) return;
+    timeline_.erase(timeline_.begin());
+  }
+}
+
+std::size_t SerialReceiver::in_force(sim::Time t) const {
+  std::size_t i = timeline_.size() - 1;
+  while (i > 0 && timeline_[i].segment.since > t) --i;
+  return i;
+}
+
+SerialReceiver::Entry* SerialReceiver::find(std::uint64_t serial) {
+  for (Entry& e : timeline_) {
+    if (e.serial == serial) return &e;
+  }
+  return nullptr;
+}
+
+const RxdSegment& SerialReceiver::input() const {
+  return timeline_[in_force(unit_.chip().scheduler().now())].segment;
+}
+
+std::vector<RxdSegment> SerialReceiver::input_from_now() const {
+  std::vector<RxdSegment> out;
+  for (std::size_t i = in_force(unit_.chip().scheduler().now()); i < timeline_.size(); ++i) {
+    out.push_back(timeline_[i].segment);
+  }
+  return out;
+}
+
+void SerialReceiver::reset() {
   sim::Scheduler& s = unit_.chip().scheduler();
-  std::vector<std::size_t> started;  // start bits of frames whose start event already ran
-  for (std::size_t i = first; i < current_.events.size(); ++i) {
-    const FrameEvents& e = current_.events[i];
-    if (e.address != kNone && !s.pending(e.address_event)) {
-      started.push_back(old.frames[i].start_bit);
-    }
-    cancel_report(e.address, e.address_event);
-    cancel_report(e.detected, e.detected_event);
+  s.cancel(report_event_);
+  s.cancel(monitor_event_);
+  report_event_ = monitor_event_ = {};
+  for (const Deferred& d : deferred_) s.cancel(d.event);
+  deferred_.clear();
+  for (Entry& e : timeline_) {
+    e.decode = nullptr;
+    e.frames.clear();
   }
-  current_.decode = decode_burst_prefix(current_.bits, cut_bit);
-  current_.cut = at;
-  current_.events.resize(first);
-  current_.events.resize(current_.decode->frames.size());
-  for (std::size_t i = first; i < current_.events.size(); ++i) {
-    const std::size_t start_bit = current_.decode->frames[i].start_bit;
-    current_.events[i].address_done =
-        std::find(started.begin(), started.end(), start_bit) != started.end();
-  }
-  schedule_frames(first);
+  unit_.chip().set_output(Pin::RECACTN, true);
+  recactn_.replan();
 }
 
-// Reports of a finished burst can no longer be cut: they just wait for their time.
-void SerialReceiver::retire_current() { current_.events.clear(); }
-
-void SerialReceiver::receive(const RxdSegment& burst) {
-  if (burst.period != unit_.bit_period()) return;  // distorted: the monitor counts it
-  retire_current();
-  current_.active = true;
-  current_.start = burst.since;
-  current_.period = burst.period;
-  current_.cut = burst.burst_end();
-  current_.bits = burst.bits;
-  current_.decode = decode_burst(burst.bits);
-  current_.events.assign(current_.decode->frames.size(), FrameEvents{});
-  schedule_frames(0);
+// Out of reset: the segment in force was not received (no opening flag seen); what is
+// announced for later is taken as if announced now.
+void SerialReceiver::release() {
+  const sim::Time now = unit_.chip().scheduler().now();
+  const std::size_t current = in_force(now);
+  monitor_seen_ = timeline_[current].serial;
+  monitor_last_ = timeline_[current].segment;
+  for (std::size_t i = current + 1; i < timeline_.size(); ++i) take(timeline_[i]);
+  plan_reports();
+  plan_monitor();
+  recactn_.replan();
+  for (std::size_t i = current + 1; i < timeline_.size(); ++i) pass_to_repeater(timeline_[i]);
 }
 
-sim::Time SerialReceiver::pipeline(sim::Time t) const {
-  const Chip& chip = unit_.chip();
-  const sim::Time half_bits = (11 * current_.period + 1) / 2;  // 5.5 bit times
-  // Three MCLK edges after the first one at or after t + 5.5 bits.
-  const MclkGrid& mclk = chip.mclk();
+void SerialReceiver::refresh_rate() {
+  if (!unit_.running()) return;
+  const sim::Time now = unit_.chip().scheduler().now();
+  for (std::size_t i = in_force(now) + 1; i < timeline_.size(); ++i) take(timeline_[i]);
+  plan_reports();
+  plan_monitor();
+  recactn_.replan();
+}
+
+// --- reports to the telegram processor ---------------------------------------------------
+
+sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
+  const sim::Time half_bits = (11 * period + 1) / 2;  // 5.5 bit times
+  // Three MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
+  const MclkGrid& mclk = unit_.chip().mclk();
   return mclk.time_of(mclk.first_at_or_after(t + half_bits) + 3);
 }
 
-void SerialReceiver::schedule_frames(std::size_t first) {
-  sim::Scheduler& s = unit_.chip().scheduler();
-  const std::shared_ptr<const BurstDecode> decode = current_.decode;
-  for (std::size_t i = first; i < decode->frames.size(); ++i) {
-    const wire::DecodedFrame& f = decode->frames[i];
-    FrameEvents& e = current_.events[i];
-    const sim::Time start = current_.start + static_cast<sim::Time>(f.start_bit) * current_.period;
-    const sim::Time end = std::min(
-        current_.start + static_cast<sim::Time>(f.end_bit) * current_.period, current_.cut);
-    const std::size_t address_end = decode->address_end[i];
-    const sim::Time address_in =
-        current_.start + static_cast<sim::Time>(address_end) * current_.period;
-    if (on_start_ && !e.address_done && address_end <= f.end_bit && address_in <= current_.cut) {
-      e.address = schedule_report(std::max(pipeline(address_in), s.now()),
-                                  Report{decode, i, start, end, 0, false, {}});
-      e.address_event = reports_[e.address].event;
-    }
-    if (on_telegram_) {
-      const sim::Time detected = pipeline(end);
-      e.detected = schedule_report(detected, Report{decode, i, start, end, detected, true, {}});
-      e.detected_event = reports_[e.detected].event;
-    }
+// One event: the earliest report the telegram processor wants in its present state. A
+// report whose time passes while it is not wanted is dropped: the processor would have
+// done nothing with it.
+bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time now,
+                               sim::Time before) {
+  FrameState& st = e.frames[i];
+  bool& done = telegram ? st.end_done : st.start_done;
+  if (done) return false;
+  const sim::Time t = telegram ? (on_telegram_ ? st.telegram_report : kNever)
+                               : (on_start_ ? st.start_report : kNever);
+  if (t < now || t == kNever) {
+    done = true;
+    return false;
   }
+  if (t >= before) return false;
+  if (interest_ == nullptr) return true;
+  const wire::DecodedFrame& f = e.decode->frames[i];
+  return telegram ? interest_->wants_telegram(st.start, f)
+                  : interest_->wants_start(st.start, f.address);
 }
 
-void SerialReceiver::schedule_recact() {
+void SerialReceiver::plan_reports() {
   sim::Scheduler& s = unit_.chip().scheduler();
-  s.cancel(recact_event_);
-  if (!current_.decode || current_.decode->frames.empty()) return set_recact(false);
-  const std::vector<wire::DecodedFrame>& frames = current_.decode->frames;
-  const sim::Time begin =
-      current_.start + static_cast<sim::Time>(frames.front().start_bit) * current_.period;
-  const sim::Time end =
-      std::min(current_.start + static_cast<sim::Time>(frames.back().end_bit) * current_.period,
-               current_.cut);
   const sim::Time now = s.now();
-  if (now >= end) return set_recact(false);
-  if (now >= begin) {
-    set_recact(true);
-    recact_event_ = s.at(end, [this] { set_recact(false); });
+  Report best{kNever, 0, 0, false};
+  if (unit_.running() && (on_start_ || on_telegram_)) {
+    for (Entry& e : timeline_) {
+      if (!e.decode || e.segment.since > best.when) continue;
+      for (std::size_t i = 0; i < e.frames.size(); ++i) {
+        if (candidate(e, i, false, now, best.when)) {
+          best = Report{e.frames[i].start_report, e.serial, i, false};
+        }
+        if (candidate(e, i, true, now, best.when)) {
+          best = Report{e.frames[i].telegram_report, e.serial, i, true};
+        }
+      }
+    }
+  }
+  const bool same = report_event_.value != 0 && best.when == report_.when &&
+                    best.serial == report_.serial && best.frame == report_.frame &&
+                    best.telegram == report_.telegram;
+  if (same) return;
+  s.cancel(report_event_);
+  report_event_ = {};
+  report_ = best;
+  if (best.when == kNever) return;
+  report_event_ = s.at(
+      best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+}
+
+void SerialReceiver::consider(Entry& e) {
+  if (!e.decode || !(on_start_ || on_telegram_)) return;
+  sim::Scheduler& s = unit_.chip().scheduler();
+  const sim::Time now = s.now();
+  const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
+  Report best{planned, 0, 0, false};
+  for (std::size_t i = 0; i < e.frames.size(); ++i) {
+    if (candidate(e, i, false, now, best.when)) {
+      best = Report{e.frames[i].start_report, e.serial, i, false};
+    }
+    if (candidate(e, i, true, now, best.when)) {
+      best = Report{e.frames[i].telegram_report, e.serial, i, true};
+    }
+  }
+  if (best.serial == 0) return;  // the planned report stays the earliest
+  s.cancel(report_event_);
+  report_ = best;
+  report_event_ = s.at(
+      best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+}
+
+void SerialReceiver::fire_report() {
+  report_event_ = {};
+  const Report r = report_;
+  Entry* e = find(r.serial);
+  if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
+  const std::shared_ptr<const BurstDecode> decode = e->decode;  // the handler may prune
+  const wire::DecodedFrame& f = decode->frames[r.frame];
+  FrameState& st = e->frames[r.frame];
+  const sim::Time start = st.start;
+  if (r.telegram) {
+    st.end_done = true;
+    on_telegram_(ReceivedTelegram{start, st.end, r.when, f});
   } else {
-    set_recact(false);
-    recact_event_ = s.at(begin, [this] { schedule_recact(); });
+    st.start_done = true;
+    on_start_(start, f.address);
+  }
+  plan_reports();
+}
+
+// --- line monitor ---------------------------------------------------------------------------
+
+bool SerialReceiver::good(const RxdSegment& s) const {
+  return s.has_edges() && s.period == unit_.bit_period();
+}
+
+// The monitor hears a change only when it leaves or enters a bad signal: between good
+// signals (edges at the receiver's rate) its status cannot change.
+void SerialReceiver::plan_monitor() {
+  sim::Scheduler& s = unit_.chip().scheduler();
+  s.cancel(monitor_event_);
+  monitor_event_ = {};
+  if (!unit_.running()) return;
+  const sim::Time now = s.now();
+  // Compared with what the monitor last took, not with the entry before: a change at the
+  // very instant of the one in force replaces it in the timeline.
+  RxdSegment before = monitor_last_;
+  for (const Entry& e : timeline_) {
+    if (e.serial <= monitor_seen_) continue;
+    const bool quiet = good(before) && good(e.segment);
+    if (e.segment.since > now) {
+      if (quiet) {
+        before = e.segment;
+        continue;
+      }
+      monitor_event_ = s.at(
+          e.segment.since, [](void* self) { static_cast<SerialReceiver*>(self)->fire_monitor(); },
+          this);
+      return;
+    }
+    monitor_seen_ = e.serial;
+    monitor_last_ = e.segment;
+    if (!quiet) unit_.monitor().input_changed(before, e.segment);
+    before = e.segment;
   }
 }
 
-void SerialReceiver::set_recact(bool active) {
-  if (active == recact_) return;
-  recact_ = active;
-  unit_.chip().set_output(Pin::RECACTN, !active);
-  unit_.fields().recact.set(unit_.chip().regs(), active);
+void SerialReceiver::fire_monitor() {
+  monitor_event_ = {};
+  plan_monitor();
+}
+
+// --- RECACT / RECACTN -----------------------------------------------------------------------
+
+// Low from the first frame's opening flag to the end of the last frame (or the cut). A
+// telegram cut by the next one keeps it low across the seam.
+bool SerialReceiver::recact_at(sim::Time t) const {
+  if (!unit_.running()) return false;
+  const Entry& e = timeline_[in_force(t)];
+  if (!e.decode || e.frames.empty()) return false;
+  return e.frames[0].start <= t && t < e.frames.back().end;
+}
+
+sim::Time SerialReceiver::next_change_after(sim::Time t) const {
+  const bool level = recact_at(t);
+  std::vector<sim::Time> candidates;
+  for (std::size_t i = in_force(t); i < timeline_.size(); ++i) {
+    const Entry& e = timeline_[i];
+    candidates.push_back(e.segment.since);
+    if (e.decode && !e.frames.empty()) {
+      candidates.push_back(e.frames[0].start);
+      candidates.push_back(e.frames.back().end);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  for (const sim::Time c : candidates) {
+    if (c > t && recact_at(c) != level) return c;
+  }
+  return kNever;
 }
 
 }  // namespace sercon::chip

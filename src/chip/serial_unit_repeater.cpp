@@ -10,23 +10,23 @@
 
 namespace sercon::chip {
 
-void SerialRepeater::cancel() {
-  for (const Pending& p : pending_) unit_.chip().scheduler().cancel(p.event);
-  pending_.clear();
-}
-
 void SerialRepeater::reset() {
-  cancel();
   repon_ = false;
-  own_active_ = false;
-  last_forward_ = 0;
-  unit_.outputs().line_condition(LineCondition::Dark, 0);
+  background_.clear();
+  own_.clear();
+  unit_.outputs().line_condition(unit_.chip().scheduler().now(), LineCondition::Dark, 0);
 }
 
 void SerialRepeater::release() {
   repon_ = unit_.fields().repon.on(unit_.chip().regs());
-  forwarded_ = unit_.receiver().input();
-  show_line();
+  const sim::Time now = unit_.chip().scheduler().now();
+  background_.clear();
+  if (repon_) {
+    take_up_received();
+  } else {
+    background_.push_back(RxdSegment::of(now, LineCondition::Idle, unit_.bit_period()));
+  }
+  emit_from(now);
 }
 
 sim::Time SerialRepeater::forward_time(sim::Time t) const {
@@ -35,59 +35,120 @@ sim::Time SerialRepeater::forward_time(sim::Time t) const {
   return (due + sclk - 1) / sclk * sclk;
 }
 
-void SerialRepeater::input(const RxdSegment& segment) {
-  if (!repon_ || unit_.bit_period() == 0) return;
-  // Times stay in order even if the delay shrinks (a faster rate chosen meanwhile).
-  const sim::Time at = std::max(forward_time(segment.since), last_forward_);
-  last_forward_ = at;
-  pending_.push_back(Pending{segment, {}});
-  pending_.back().segment.since = at;
-  // The callback holds `this` only (no allocation); the segment waits in pending_.
-  pending_.back().event = unit_.chip().scheduler().at(at, [this] { forward(); });
-}
-
-void SerialRepeater::forward() {
-  forwarded_ = std::move(pending_.front().segment);
-  pending_.pop_front();
-  const RxdSegment& segment = forwarded_;
-  if (own_active_) return;  // own telegram wins; a burst starting under it is lost whole
-  if (segment.is_burst) {
-    unit_.outputs().line_burst(segment.burst());
-  } else {
-    unit_.outputs().line_condition(segment.condition, segment.period);
+// Switched on: the line takes up what RxD carries now at once (a telegram half-way through
+// is not picked up: its rest would decode to nothing), and what RxD is told of for later
+// leaves after the repeater delay.
+void SerialRepeater::take_up_received() {
+  const sim::Time now = unit_.chip().scheduler().now();
+  const std::vector<RxdSegment> received = unit_.receiver().input_from_now();
+  const RxdSegment& current = received.front();
+  background_.clear();
+  background_.push_back(RxdSegment::of(now, current.condition_at_join(), current.period));
+  for (std::size_t i = 1; i < received.size(); ++i) {
+    RxdSegment s = received[i];
+    s.since = std::max(forward_time(s.since), now);
+    while (!background_.empty() && background_.back().since >= s.since) background_.pop_back();
+    background_.push_back(std::move(s));
   }
 }
 
-void SerialRepeater::own_begin(const LineBurst& burst) {
-  own_active_ = true;
-  unit_.outputs().line_burst(burst);  // cuts a repeated telegram in the way
+void SerialRepeater::input(const RxdSegment& segment) {
+  if (!repon_ || unit_.bit_period() == 0) return;
+  const sim::Time at = forward_time(segment.since);
+  // The later word wins (line.hpp).
+  while (!background_.empty() && background_.back().since >= at) background_.pop_back();
+  prune();
+  RxdSegment& out = background_.emplace_back(segment);
+  out.since = at;
+  if (own_.empty()) {  // nothing of its own in the way: straight on (the usual case)
+    if (out.is_burst) return unit_.outputs().line_burst(out.burst());
+    return unit_.outputs().line_condition(at, out.condition, out.period);
+  }
+  emit_from(at);
 }
 
-void SerialRepeater::own_end() {
-  own_active_ = false;
-  if (repon_) show_line();  // otherwise the own idle fill follows, as the burst implies
+void SerialRepeater::own(const LineBurst& burst) {
+  own_.push_back(burst);
+  prune();
+  emit_from(burst.start);
 }
 
 void SerialRepeater::refresh() {
   const bool on = unit_.fields().repon.on(unit_.chip().regs());
+  const sim::Time now = unit_.chip().scheduler().now();
   if (on != repon_) {
     repon_ = on;
-    cancel();
-    // Switched on: the line takes up what RxD carries now (a telegram half-way through is
-    // not picked up; its rest would decode to nothing).
-    if (on) forwarded_ = unit_.receiver().input();
-    if (!own_active_) show_line();
-  } else if (!repon_ && !own_active_) {
-    show_line();  // the own idle fill at a new bit rate; a repeated telegram is left alone
+    if (on) {
+      take_up_received();
+    } else {
+      background_.clear();
+      background_.push_back(RxdSegment::of(now, LineCondition::Idle, unit_.bit_period()));
+    }
+  } else if (!repon_) {
+    // The own idle fill at a new bit rate (from the end of an own telegram under way).
+    while (!background_.empty() && background_.back().since >= now) background_.pop_back();
+    background_.push_back(RxdSegment::of(now, LineCondition::Idle, unit_.bit_period()));
+  } else {
+    return;  // REPON = 1: the received signal goes on as it was announced
   }
+  prune();
+  emit_from(now);
 }
 
-void SerialRepeater::show_line() {
-  if (own_active_) return;
-  if (repon_) {
-    unit_.outputs().line_condition(forwarded_.condition_at_join(), forwarded_.period);
-  } else {
-    unit_.outputs().line_condition(LineCondition::Idle, unit_.bit_period());
+void SerialRepeater::prune() {
+  const sim::Time now = unit_.chip().scheduler().now();
+  while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
+  while (background_.size() > 1 && background_[1].since <= now) background_.pop_front();
+}
+
+// Background segment `index` from `at` on: as it is when it begins there, else joined
+// half-way (a telegram counts as the idle fill after it).
+void SerialRepeater::emit_background(sim::Time at, std::size_t index, bool joined) {
+  const RxdSegment& s = background_[index];
+  TxdOutputs& out = unit_.outputs();
+  if (!joined && s.since == at && s.is_burst) return out.line_burst(s.burst());
+  if (!joined && s.since == at) return out.line_condition(at, s.condition, s.period);
+  out.line_condition(at, s.condition_at_join(), s.period);
+}
+
+void SerialRepeater::emit_from(sim::Time t) {
+  if (background_.empty()) return;
+  TxdOutputs& out = unit_.outputs();
+  std::size_t k = 0;  // next own telegram
+  while (k < own_.size() && own_[k].end() <= t) ++k;
+  std::size_t j = 0;  // background segment in force at `pos`
+  const auto seek = [this, &j](sim::Time at) {
+    while (j + 1 < background_.size() && background_[j + 1].since <= at) ++j;
+  };
+  sim::Time pos = t;
+  bool inside_own = k < own_.size() && own_[k].start <= t;
+  if (!inside_own) {
+    seek(pos);
+    emit_background(pos, j, background_[j].since != pos);
+  }
+  for (;;) {
+    if (inside_own) {
+      if (own_[k].start == pos) out.line_burst(own_[k]);
+      pos = own_[k].end();
+      ++k;
+      inside_own = false;
+      if (k < own_.size() && own_[k].start == pos) {  // back to back
+        inside_own = true;
+        continue;
+      }
+      seek(pos);
+      emit_background(pos, j, background_[j].since != pos);
+    }
+    const sim::Time next_own = k < own_.size() ? own_[k].start : LineBurst{}.start;
+    const bool more_own = k < own_.size();
+    // Background segments that begin before the next own telegram leave as they are.
+    while (j + 1 < background_.size() && (!more_own || background_[j + 1].since < next_own)) {
+      ++j;
+      emit_background(background_[j].since, j, false);
+    }
+    if (!more_own) return;
+    pos = next_own;
+    inside_own = true;
   }
 }
 

@@ -11,17 +11,13 @@
 
 namespace sercon::chip {
 
-void SerialTransmitter::cancel() {
-  for (const Scheduled& s : queue_) {
-    unit_.chip().scheduler().cancel(s.begin);
-    unit_.chip().scheduler().cancel(s.end);
-  }
-  queue_.clear();
-}
+SerialTransmitter::SerialTransmitter(SerialUnit& unit)
+    : unit_(unit), idle_(unit.chip(), Pin::IDLE, *this) {}
 
 void SerialTransmitter::reset() {
-  cancel();
+  sent_.clear();
   unit_.chip().set_output(Pin::IDLE, true);
+  idle_.replan();
 }
 
 // The fill starts at release on the TxC grid, line high (a project choice: any level would
@@ -55,27 +51,31 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   encoder.telegram(address, data);
   level_ = encoder.level();
   auto bits = std::make_shared<const wire::LineBits>(encoder.take());
-  Scheduled s;
-  s.burst = LineBurst{begin_at, period, std::move(bits)};
-  free_at_ = s.burst.end();
-  s.begin = chip.scheduler().at(begin_at, [this] { begin(); });
-  s.end = chip.scheduler().at(free_at_, [this] { finish(); });
-  queue_.push_back(std::move(s));
+  const LineBurst burst{begin_at, period, std::move(bits)};
+  free_at_ = burst.end();
+  while (!sent_.empty() && sent_.front().end() <= now) sent_.pop_front();
+  sent_.push_back(burst);
+  unit_.repeater().own(burst);
+  idle_.replan();
   return free_at_;
 }
 
-void SerialTransmitter::begin() {
-  unit_.chip().set_output(Pin::IDLE, false);
-  unit_.repeater().own_begin(queue_.front().burst);
+bool SerialTransmitter::level_at(sim::Time t) const {
+  for (const LineBurst& b : sent_) {
+    if (b.start <= t && t < b.end()) return false;
+  }
+  return true;
 }
 
-void SerialTransmitter::finish() {
-  queue_.pop_front();
-  // Back to back: the next telegram begins in this instant; IDLE stays low, no gap.
-  const sim::Time now = unit_.chip().scheduler().now();
-  if (!queue_.empty() && queue_.front().burst.start == now) return;
-  unit_.chip().set_output(Pin::IDLE, true);
-  unit_.repeater().own_end();
+// Back to back telegrams keep IDLE low across the seam.
+sim::Time SerialTransmitter::next_change_after(sim::Time t) const {
+  const bool level = level_at(t);
+  for (const LineBurst& b : sent_) {
+    for (const sim::Time c : {b.start, b.end()}) {
+      if (c > t && level_at(c) != level) return c;
+    }
+  }
+  return LazyPin::kNever;
 }
 
 }  // namespace sercon::chip

@@ -132,6 +132,7 @@ void TelegramList::fire_transmit() {
   } catch (const ListFault& f) {
     fault(f);
   }
+  client_.list_moved();
 }
 
 void TelegramList::close_window() {
@@ -143,20 +144,28 @@ void TelegramList::close_window() {
   } catch (const ListFault& f) {
     fault(f);
   }
+  client_.list_moved();
 }
 
 void TelegramList::fire_end() {
   event_ = 0;
   state_ = State::Idle;
   client_.end_reached(item_);
+  client_.list_moved();
 }
 
-TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, ListItem& item) {
+TelegramList::Match TelegramList::would_take(sim::Time start, std::uint8_t address) const {
   if (state_ != State::Receive) return Match::NotExpected;
   if (item_.has(telegram::kTchk) && (start < window_opens_ || start >= window_closes_)) {
     return Match::NotExpected;
   }
   if (item_.has(telegram::kAchk) && address != item_.adr()) return Match::OtherAddress;
+  return Match::Accepted;
+}
+
+TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, ListItem& item) {
+  const Match match = would_take(start, address);
+  if (match != Match::Accepted) return match;
   item = item_;
   cancel_event();
   state_ = State::Idle;

@@ -44,6 +44,7 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   serial_.on_telegram_start(
       [this](sim::Time start, std::uint8_t address) { on_telegram_start(start, address); });
   serial_.on_telegram([this](const ReceivedTelegram& telegram) { on_telegram(telegram); });
+  serial_.set_interest(this);
 }
 
 // Only the scheduler is touched: the time base may be gone (it cancels its own events).
@@ -60,6 +61,7 @@ void TelegramProcessor::reset(ResetCause) {
   scheduler_.cancel(rscend_event_);
   tend_event_ = {};
   rscend_event_ = {};
+  serial_.interest_changed();
 }
 
 void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
@@ -89,6 +91,7 @@ void TelegramProcessor::on_cycle_start(const CycleStart& start) {
     }
   }
   list_.start(phase() <= 2 ? telegram::kCompt0 : telegram::kCompt1);
+  serial_.interest_changed();
 }
 
 void TelegramProcessor::on_send_mst() {
@@ -230,6 +233,30 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
 void TelegramProcessor::end_reached(const ListItem&) { interrupts_.raise(Irq::Endmk); }
 
 void TelegramProcessor::list_fault(const ListFault&) { ++list_faults_; }
+
+void TelegramProcessor::list_moved() { serial_.interest_changed(); }
+
+// What on_telegram_start would do: offer() acts on a telegram its waiting header takes, and
+// on one of another address in its window only where the 410B forgets FLMDTADR (the phase
+// can change by register writes the receiver does not hear of, so every 410B offer of
+// another address counts).
+bool TelegramProcessor::wants_start(sim::Time start, std::uint8_t address) const {
+  switch (list_.would_take(start, address)) {
+    case TelegramList::Match::Accepted:
+      return true;
+    case TelegramList::Match::OtherAddress:
+      return chip_.variant() == Variant::Sercon410B;
+    case TelegramList::Match::NotExpected:
+      break;
+  }
+  return false;
+}
+
+// What on_telegram would do: an MST always counts; any other telegram only when it is the
+// one being received.
+bool TelegramProcessor::wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const {
+  return is_mst(frame) || (receiving_ && receiving_->start == start);
+}
 
 // The address byte is in after the opening flag and the address with at most one stuffed
 // bit (17 bits); the receiver reports it 5.5 bits + 3..4 MCLK later (docs/serial-and-ring.md).

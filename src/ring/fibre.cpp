@@ -33,7 +33,6 @@ Fibre::Fibre(sim::Scheduler& scheduler, double length_m, sim::Time ps_per_metre)
     : scheduler_(scheduler), length_m_(length_m), delay_(delay_of(length_m, ps_per_metre)) {}
 
 Fibre::~Fibre() {
-  for (const Delivery& d : pending_) scheduler_.cancel(d.event);
   for (const auto id : switches_) scheduler_.cancel(id);
 }
 
@@ -42,75 +41,71 @@ void Fibre::connect(chip::LineListener& output) {
   tell_far_end();
 }
 
-void Fibre::check_order(sim::Time at) {
-  if (at < scheduler_.now()) {
-    throw std::invalid_argument("Fibre input: a change at " + std::to_string(at) +
-                                " ps is before now (" + std::to_string(scheduler_.now()) + " ps)");
-  }
-  if (at < last_input_) {
-    throw std::invalid_argument("Fibre input: a change at " + std::to_string(at) +
-                                " ps comes after one at " + std::to_string(last_input_) + " ps");
-  }
-  last_input_ = at;
-}
-
-// Deliveries wait in pending_ (time order); each event is a plain function + `this`.
-void Fibre::schedule(Delivery delivery) {
-  const sim::Time at = delivery.burst.start;
-  pending_.push_back(std::move(delivery));
-  pending_.back().event = scheduler_.at(
-      at, [](void* self) { static_cast<Fibre*>(self)->deliver(); }, this);
-}
-
-void Fibre::deliver() {
-  const Delivery d = std::move(pending_.front());
-  pending_.pop_front();
-  if (d.is_burst) return deliver_burst(d.burst);
-  deliver_condition(d.burst.start, d.condition, d.burst.bit_period);
-}
-
 void Fibre::Input::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
   if (toggles(condition) ? period <= 0 : period < 0) {
     throw std::invalid_argument("Fibre input: " + std::string(chip::to_string(condition)) +
                                 " with bit period " + std::to_string(period) + " ps");
   }
-  fibre_.check_order(at);
-  Delivery d;
-  d.condition = condition;
-  d.burst.start = at + fibre_.delay_;
-  d.burst.bit_period = toggles(condition) ? period : 0;
-  fibre_.schedule(std::move(d));
+  Change c;
+  c.condition = condition;
+  c.burst.start = at;
+  c.burst.bit_period = toggles(condition) ? period : 0;
+  fibre_.take(std::move(c));
 }
 
 void Fibre::Input::line_burst(const LineBurst& burst) {
   if (!burst.bits || burst.bit_period <= 0) {
     throw std::invalid_argument("Fibre input: a burst needs bits and a bit period > 0");
   }
-  fibre_.check_order(burst.start);
-  Delivery d;
-  d.is_burst = true;
-  d.burst = burst;
-  d.burst.start += fibre_.delay_;
-  if (fibre_.errors_.enabled()) d.burst.bits = fibre_.errors_.apply(burst.bits);
-  fibre_.schedule(std::move(d));
+  Change c;
+  c.is_burst = true;
+  c.burst = burst;
+  fibre_.take(std::move(c));
 }
 
-void Fibre::deliver_condition(sim::Time at, LineCondition condition, sim::Time period) {
-  far_ = FarEnd{false, condition, period, at};
-  if (!broken_ && output_) output_->line_condition(at, condition, period);
+void Fibre::take(Change change) {
+  const sim::Time now = scheduler_.now();
+  if (change.burst.start < now) {
+    throw std::invalid_argument("Fibre input: a change at " + std::to_string(change.burst.start) +
+                                " ps is before now (" + std::to_string(now) + " ps)");
+  }
+  change.burst.start += delay_;
+  if (change.is_burst && errors_.enabled()) change.burst.bits = errors_.apply(change.burst.bits);
+  // The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
+  while (!history_.empty() && history_.back().burst.start >= change.burst.start) {
+    history_.pop_back();
+  }
+  while (history_.size() > 1 && history_[1].burst.start <= now) history_.pop_front();
+  history_.push_back(change);
+  if (!broken_) pass_on(history_.back());
 }
 
-void Fibre::deliver_burst(const LineBurst& burst) {
-  far_ = FarEnd{true, LineCondition::Idle, burst.bit_period, burst.end()};
-  if (!broken_ && output_) output_->line_burst(burst);
+void Fibre::pass_on(const Change& c) {
+  if (!output_) return;
+  if (c.is_burst) return output_->line_burst(c.burst);
+  output_->line_condition(c.burst.start, c.condition, c.burst.bit_period);
 }
 
 void Fibre::tell_far_end() {
   if (!output_) return;
   const sim::Time now = scheduler_.now();
   if (broken_) return output_->line_condition(now, LineCondition::Dark, 0);
-  // A telegram already under way is a fragment without its opening flag: idle fill.
-  output_->line_condition(now, far_.condition, far_.period);
+  // In force now: the last change that has reached the far end. A telegram already under
+  // way is a fragment without its opening flag: the idle fill after it.
+  std::size_t next = 0;
+  while (next < history_.size() && history_[next].burst.start <= now) ++next;
+  if (next == 0) {
+    output_->line_condition(now, LineCondition::Dark, 0);
+  } else {
+    const Change& c = history_[next - 1];
+    if (c.is_burst && c.burst.start == now) {
+      output_->line_burst(c.burst);
+    } else {
+      output_->line_condition(now, c.is_burst ? LineCondition::Idle : c.condition,
+                              c.burst.bit_period);
+    }
+  }
+  for (; next < history_.size(); ++next) pass_on(history_[next]);  // still on their way
 }
 
 void Fibre::break_now() {

@@ -41,6 +41,8 @@ class BusyArbiter {
   // Per RAM word: the MCLK period in which the telegram processor last used it (-1:
   // never). O(1) per access: a list walk reads thousands of words at one instant.
   std::vector<std::int64_t> last_used_;
+  sim::Time cached_now_ = -1;  // internal_access: the instant cached_period_ belongs to
+  Edge cached_period_ = -1;
   bool busy_ = false;
   sim::Scheduler::EventId release_event_{};
 };

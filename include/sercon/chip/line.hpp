@@ -52,17 +52,24 @@ struct LineBurst {
 };
 
 // Something that listens to a line (a chip's receiver, a fibre's input, a tracer).
-// Calls come in time order per line; `at` / `burst.start` may lie in the future of the
-// scheduler's now (a fibre delivers at send time + delay by scheduling, so in practice a
-// receiver is told at the moment things happen at its input, see ring layer docs).
+//
+// Announcements: a sender tells what it will put on the line as soon as it knows it, so a
+// call's time (`at`, `burst.start`) is never before the scheduler's now but may lie in the
+// future (a fibre passes a telegram on at once, its start moved by the delay; a repeater
+// announces where a telegram will leave it). This is what lets a telegram cross a ring of
+// repeaters without an event per hop. The later word wins: a call supersedes everything
+// announced before for its time and later, and cuts a telegram under way at its time. So
+// a listener keeps what was announced until its time comes, and drops what a later call
+// overtakes. A listener that wants each change at the moment it happens, in time order,
+// sits behind a SettledLine (settled_line.hpp).
 class LineListener {
  public:
   virtual ~LineListener() = default;
-  // The line enters `condition` at time `at` (bit_period says how fast idle/zero-bit
+  // The line enters `condition` at time `at` >= now (bit_period says how fast idle/zero-bit
   // edges come; 0 for Dark/Light).
   virtual void line_condition(sim::Time at, LineCondition condition, sim::Time bit_period) = 0;
-  // A telegram begins on the line at burst.start; the line returns to Idle at burst.end()
-  // unless another condition is announced.
+  // A telegram begins on the line at burst.start >= now; the line returns to Idle at
+  // burst.end() unless another change is announced before that.
   virtual void line_burst(const LineBurst& burst) = 0;
 };
 

@@ -36,6 +36,18 @@ struct ReceivedTelegram {
   const wire::DecodedFrame& frame;
 };
 
+// What the telegram processor would act on in its present state. The receiver spends an
+// event only on reports it wants; the processor calls SerialUnit::interest_changed()
+// whenever its answers may change (its list walk moved on, a telegram was accepted, reset).
+class ReceiveInterest {
+ public:
+  virtual ~ReceiveInterest() = default;
+  // The address of a telegram whose opening flag began at `start` is in.
+  virtual bool wants_start(sim::Time start, std::uint8_t address) const = 0;
+  // A telegram that began at `start` is detected (whole or cut off by an error).
+  virtual bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const = 0;
+};
+
 class SerialUnit : public ChipUnit {
  public:
   using TelegramStartHandler = std::function<void(sim::Time start, std::uint8_t address)>;
@@ -76,8 +88,13 @@ class SerialUnit : public ChipUnit {
   // --- receiver events, called at the simulated time they happen -------------------------
   // Once the address byte is in: opening flag + address (with stuffing) + pipeline delay.
   void on_telegram_start(TelegramStartHandler handler);
-  // At ReceivedTelegram::detected, for every frame the decoder reports (errors included).
+  // At ReceivedTelegram::detected, for every frame the decoder reports (errors included),
+  // as far as the interest (below) wants it.
   void on_telegram(TelegramHandler handler);
+  // Only reports `interest` wants are made (nullptr: all). It must outlive the unit or be
+  // taken back with nullptr.
+  void set_interest(const ReceiveInterest* interest);
+  void interest_changed();
 
   // --- ring side -------------------------------------------------------------------------
   // When the repeater passes on a change that reaches RxD at `arrival`: kRepeaterDelayBits

@@ -7,8 +7,11 @@
 #pragma once
 
 #include <array>
+#include <deque>
 
 #include "sercon/chip/line.hpp"
+#include "sercon/chip/serial_unit_input.hpp"
+#include "sercon/sim/scheduler.hpp"
 #include "sercon/sim/signal.hpp"
 #include "sercon/sim/time.hpp"
 
@@ -18,15 +21,19 @@ class SerialUnit;
 
 class TxdOutputs {
  public:
-  explicit TxdOutputs(SerialUnit& unit) : unit_(unit) {}
+  explicit TxdOutputs(SerialUnit& unit);
+  ~TxdOutputs();
+  TxdOutputs(const TxdOutputs&) = delete;
+  TxdOutputs& operator=(const TxdOutputs&) = delete;
 
   void connect(unsigned pin, LineListener& listener);  // pin 1..6
   void disconnect(unsigned pin);
 
-  // The serial line (own telegrams, idle fill or the repeated signal) changes now.
-  // Saying the condition the line is already in again is a no-op.
-  void line_condition(LineCondition condition, sim::Time period);
-  void line_burst(const LineBurst& burst);  // burst.start == now
+  // Announcements of the serial line (own telegrams, idle fill or the repeated signal) at
+  // `at` / burst.start >= now; the later word wins (line.hpp). Announcing the condition the
+  // line is in at `at` anyway, with nothing announced after it, is a no-op.
+  void line_condition(sim::Time at, LineCondition condition, sim::Time period);
+  void line_burst(const LineBurst& burst);
 
   // Registers, test mode, polarity, clocks or reset state changed: re-derive every pin and
   // tell the listeners whose view changed.
@@ -52,14 +59,22 @@ class TxdOutputs {
   sim::Level pin_level(const View& view) const;
   void show(unsigned pin, const View& view);
   void set_pins_following_line();
+  void tell_line(LineListener& listener) const;  // the line now, then what is announced
+  bool supersede(sim::Time at);                  // true when something announced was dropped
+  bool darkness_changes_at_back() const;
+  void prune();
+  bool dark_now() const;
+  const RxdSegment& line_now() const;
+  void plan_pins();  // an event where the line next goes dark or lights up
+
+  static void pass_on(LineListener& listener, const RxdSegment& segment);
 
   SerialUnit& unit_;
   std::array<Output, 6> outputs_{};
-  // The serial line: a condition, or a burst until line_end_ (then Idle at its rate).
-  LineCondition line_ = LineCondition::Dark;
-  sim::Time line_period_ = 0;
-  bool line_in_burst_ = false;
-  sim::Time line_end_ = 0;
+  // The serial line as announced, in time order, the front in force now: conditions, and
+  // bursts (followed by Idle at their rate).
+  std::deque<RxdSegment> line_;
+  sim::Scheduler::EventId pins_event_{};
 };
 
 }  // namespace sercon::chip

@@ -1,16 +1,26 @@
-// The receiver on RxD: takes conditions and telegram bursts from a fibre or bus (it is the
-// LineListener behind SerialUnit::rxd()), decodes each burst once per shared bits object
-// (line_decode_memo.hpp), drives RECACTN, and reports the telegram processor's events at
-// the simulated time they happen. A burst at a bit period other than the receiver's is
-// distorted: nothing is decoded (the line monitor raises RDIST). A change that comes before
-// a burst's end cuts it there: the frame open at the cut ends as an error.
-// docs/serial-and-ring.md, "Receiver".
+// The receiver on RxD (the LineListener behind SerialUnit::rxd()). It keeps what the line
+// has announced (line.hpp) as a timeline: the segment in force now and those still to come.
+// Each telegram burst is decoded when it is announced, once per shared bits object
+// (line_decode_memo.hpp), and passed on to the repeater at once, so a telegram crosses a
+// ring of repeaters without an event per hop. Events are spent only where something
+// happens inside the chip:
+// - reports to the telegram processor (address in, telegram detected), and only those its
+//   present state makes it act on (ReceiveInterest): one pending event, the earliest;
+// - the line monitor, only at changes into or out of a bad signal (dark, wrong rate);
+// - RECACTN / RECACT are computed from the timeline when read (LazyPin, read hook).
+// A burst at a bit period other than the receiver's is distorted: nothing is decoded (the
+// line monitor raises RDIST). A change that comes before a burst's end cuts it there: the
+// frame open at the cut ends as an error. docs/serial-and-ring.md, "Receiver".
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <vector>
 
+#include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
 #include "sercon/chip/serial_unit.hpp"
@@ -19,75 +29,126 @@
 
 namespace sercon::chip {
 
-class SerialReceiver final : public LineListener {
+class SerialReceiver final : public LineListener, private LazyPin::Source {
  public:
-  explicit SerialReceiver(SerialUnit& unit) : unit_(unit) {}
+  explicit SerialReceiver(SerialUnit& unit);
   ~SerialReceiver() override;
   SerialReceiver(const SerialReceiver&) = delete;
   SerialReceiver& operator=(const SerialReceiver&) = delete;
 
-  // LineListener: `at` / burst.start must not lie before now nor before the last change;
-  // changes announced for the future are taken when their time comes.
+  // LineListener: a time before now is std::invalid_argument.
   void line_condition(sim::Time at, LineCondition condition, sim::Time bit_period) override;
   void line_burst(const LineBurst& burst) override;
 
   void reset();
   void release();
-  void on_start(SerialUnit::TelegramStartHandler handler) { on_start_ = std::move(handler); }
-  void on_telegram(SerialUnit::TelegramHandler handler) { on_telegram_ = std::move(handler); }
+  // The bit rate changed: telegrams still to come are judged (decoded or not) at the new one.
+  void refresh_rate();
+  void on_start(SerialUnit::TelegramStartHandler handler);
+  void on_telegram(SerialUnit::TelegramHandler handler);
+  void set_interest(const ReceiveInterest* interest);
+  void interest_changed() { plan_reports(); }
 
-  const RxdSegment& input() const { return input_; }
+  // What RxD carries now.
+  const RxdSegment& input() const;
+  // The received signal from now on, as the repeater takes it up (REPON switched on): the
+  // segment in force now, then those announced for later.
+  std::vector<RxdSegment> input_from_now() const;
 
  private:
-  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  // An event for the telegram processor waiting for its time. The scheduled callback holds
-  // only `this` and the slot (no allocation per event).
+  // A decoded frame's times, worked out once when it is decoded (or cut).
+  struct FrameState {
+    sim::Time start = 0, end = 0;   // opening flag at RxD; closing flag's end (or the cut)
+    sim::Time start_report = 0;     // address in + pipeline; kNever: no whole address
+    sim::Time telegram_report = 0;  // detection
+    bool start_done = false, end_done = false;
+  };
+  // Frame states without an allocation for the usual burst of one or two frames.
+  class FrameStates {
+   public:
+    std::size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    FrameState& operator[](std::size_t i) { return i < kInline ? inline_[i] : more_[i - kInline]; }
+    const FrameState& operator[](std::size_t i) const {
+      return i < kInline ? inline_[i] : more_[i - kInline];
+    }
+    FrameState& back() { return (*this)[size_ - 1]; }
+    const FrameState& back() const { return (*this)[size_ - 1]; }
+    void clear() { resize(0); }
+    void resize(std::size_t n) {
+      for (std::size_t i = n; i < std::min(size_, kInline); ++i) inline_[i] = FrameState{};
+      more_.resize(n > kInline ? n - kInline : 0);
+      size_ = n;
+    }
+
+   private:
+    static constexpr std::size_t kInline = 2;
+    std::array<FrameState, kInline> inline_{};
+    std::vector<FrameState> more_;
+    std::size_t size_ = 0;
+  };
+  struct Entry {
+    RxdSegment segment;
+    sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
+    std::uint64_t serial = 0;
+    std::shared_ptr<const BurstDecode> decode;  // null: not taken (no burst, other rate, reset)
+    FrameStates frames;
+  };
   struct Report {
-    std::shared_ptr<const BurstDecode> decode;  // keeps the frame alive
+    sim::Time when = 0;
+    std::uint64_t serial = 0;  // of the entry
     std::size_t frame = 0;
-    sim::Time start = 0, end = 0, detected = 0;
-    bool telegram = false;  // the telegram event; false: the start event
-    sim::Scheduler::EventId event;
-  };
-  struct FrameEvents {
-    std::size_t address = kNone, detected = kNone;  // report slots
-    sim::Scheduler::EventId address_event, detected_event;
-    bool address_done = false;  // the start event ran (or the frame has no whole address)
-  };
-  struct Current {
-    bool active = false;
-    sim::Time start = 0, period = 0;
-    sim::Time cut = 0;  // where a later change cut it; burst end when uncut
-    SharedBits bits;
-    std::shared_ptr<const BurstDecode> decode;
-    std::vector<FrameEvents> events;
+    bool telegram = false;  // the detection; false: address in
   };
 
-  void check_order(sim::Time at);
-  void take(const RxdSegment& segment);  // at now
-  void cut_current(sim::Time at);
-  void receive(const RxdSegment& burst);
-  void schedule_frames(std::size_t first);
-  void schedule_recact();  // RECACTN low from the first frame's start to the last one's end
-  void set_recact(bool active);
-  void retire_current();  // the current burst is over: its reports can no longer change
-  sim::Time pipeline(sim::Time t) const;  // first MCLK edge at or after t + 5.5 bit + 3 MCLK
-  std::size_t schedule_report(sim::Time when, Report report);
-  void cancel_report(std::size_t slot, sim::Scheduler::EventId event);
-  void fire(std::size_t slot);
-  void cancel_chip_events();
+  void announce(RxdSegment segment);
+  void pass_to_repeater(const Entry& e);
+  void forward_deferred(std::uint64_t serial);
+  bool supersede(sim::Time at);  // true when something announced before was changed
+  void cut(Entry& entry, sim::Time at);
+  void take(Entry& entry);  // decode if this chip receives it
+  void prune();
+  std::size_t in_force(sim::Time t) const;  // index of the entry in force at t
+  Entry* find(std::uint64_t serial);
+
+  void work_out(Entry& e, std::size_t first);               // frame times from frame `first` on
+  sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
+  void plan_reports();
+  // Only `e` is new and nothing else changed: is one of its reports earlier than the one
+  // planned?
+  void consider(Entry& e);
+  bool candidate(Entry& e, std::size_t frame, bool telegram, sim::Time now, sim::Time before);
+  void fire_report();
+  void plan_monitor();
+  void fire_monitor();
+  bool good(const RxdSegment& s) const;  // edges at the receiver's rate
+
+  // LazyPin::Source: RECACT (true = inside a telegram); the pin is its inverse.
+  bool recact_at(sim::Time t) const;
+  bool level_at(sim::Time t) const override { return !recact_at(t); }
+  sim::Time next_change_after(sim::Time t) const override;
 
   SerialUnit& unit_;
   SerialUnit::TelegramStartHandler on_start_;
   SerialUnit::TelegramHandler on_telegram_;
-  RxdSegment input_;
-  sim::Time last_change_ = 0;
-  Current current_;
-  std::vector<Report> reports_;  // slots; a free slot holds an empty Report
-  std::vector<std::size_t> free_reports_;
-  std::deque<sim::Scheduler::EventId> deferred_;  // changes announced for the future
-  sim::Scheduler::EventId recact_event_{};
-  bool recact_ = false;
+  const ReceiveInterest* interest_ = nullptr;
+  // Never empty; front in force now (or earlier). A vector: it holds a handful of entries,
+  // and a deque of entries this size would allocate a block every second one.
+  std::vector<Entry> timeline_;
+  std::uint64_t next_serial_ = 1;
+  std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
+  RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
+  Report report_{};
+  sim::Scheduler::EventId report_event_{};
+  sim::Scheduler::EventId monitor_event_{};
+  // Forwards put off because the chain of announcements was too deep (a ring where every
+  // node repeats: a telegram would circle it forever within one call).
+  struct Deferred {
+    std::uint64_t serial;
+    sim::Scheduler::EventId event;
+  };
+  std::vector<Deferred> deferred_;
+  LazyPin recactn_;
 };
 
 }  // namespace sercon::chip

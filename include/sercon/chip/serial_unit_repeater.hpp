@@ -1,16 +1,19 @@
 // The repeater (delta spec 2.3.3, REPON) and the line it feeds: what RxD receives goes on
 // to TxD a fixed delay later (kRepeaterDelayBits bit times, rounded up to the SCLK grid),
-// the same bits object, unchanged. Own telegrams are inserted: while one is sent nothing
-// received is passed on, and a repeated telegram in the way is cut where the own one
-// begins (own telegram wins). REPON = 0: only own telegrams and their idle fill leave.
-// docs/serial-and-ring.md, "Repeater".
+// the same bits object, unchanged. It works on announcements (line.hpp): a telegram is
+// passed on the moment the receiver is told of it, with the time it will leave TxD, so it
+// costs no event. Own telegrams are inserted: while one is sent nothing received is passed
+// on (a telegram beginning under it is lost whole), a repeated telegram in the way is cut
+// where the own one begins (own telegram wins), and after it the line takes up the
+// received signal again (a telegram half-way through counts as its idle fill). REPON = 0:
+// only own telegrams and their idle fill leave. docs/serial-and-ring.md, "Repeater".
 #pragma once
 
 #include <deque>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
-#include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/time.hpp"
 
 namespace sercon::chip {
 
@@ -19,17 +22,13 @@ class SerialUnit;
 class SerialRepeater {
  public:
   explicit SerialRepeater(SerialUnit& unit) : unit_(unit) {}
-  ~SerialRepeater() { cancel(); }
-  SerialRepeater(const SerialRepeater&) = delete;
-  SerialRepeater& operator=(const SerialRepeater&) = delete;
 
   void reset();
   void release();
-  // RxD changed now (segment.since == now).
+  // RxD announced `segment` (segment.since >= now).
   void input(const RxdSegment& segment);
-  // The transmitter's own telegram begins / ends now.
-  void own_begin(const LineBurst& burst);
-  void own_end();
+  // The transmitter announced an own telegram (burst.start >= now).
+  void own(const LineBurst& burst);
   // REPON or the bit rate changed.
   void refresh();
 
@@ -38,20 +37,19 @@ class SerialRepeater {
   bool on() const { return repon_; }
 
  private:
-  struct Pending {
-    RxdSegment segment;  // as it leaves TxD
-    sim::Scheduler::EventId event;
-  };
-  void forward();    // the front of pending_ is due
-  void show_line();  // the line's condition when no own telegram is in the way
-  void cancel();
+  void take_up_received();  // REPON on: the received line from now on
+  void prune();
+  // Announces the line on TxD from `t` on: the received signal (or the own idle fill when
+  // REPON = 0) with the own telegrams laid over it.
+  void emit_from(sim::Time t);
+  void emit_background(sim::Time at, std::size_t index, bool joined);
 
   SerialUnit& unit_;
   bool repon_ = false;
-  bool own_active_ = false;
-  RxdSegment forwarded_;         // the received signal as it reaches TxD
-  std::deque<Pending> pending_;  // forwards in time order
-  sim::Time last_forward_ = 0;
+  // What leaves TxD when no own telegram is in the way, in time order, the front in force
+  // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
+  std::deque<RxdSegment> background_;
+  std::deque<LineBurst> own_;  // own telegrams not yet over, in time order
 };
 
 }  // namespace sercon::chip

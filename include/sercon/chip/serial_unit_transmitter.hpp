@@ -1,23 +1,24 @@
 // The transmitter: the telegram processor's telegrams as bursts of exact line bits on the
 // TxC grid, the idle fill's level carried on between them, IDLE low while own data goes out
-// (datasheet Table 1). The bursts go to the repeater, which puts them on the line.
+// (datasheet Table 1). A telegram is announced to the repeater, which puts it on the line,
+// the moment it is sent (line.hpp): it costs no event. IDLE is computed when read, and
+// switched by events only while watched (LazyPin).
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <span>
 
+#include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
-#include "sercon/sim/scheduler.hpp"
 
 namespace sercon::chip {
 
 class SerialUnit;
 
-class SerialTransmitter {
+class SerialTransmitter final : private LazyPin::Source {
  public:
-  explicit SerialTransmitter(SerialUnit& unit) : unit_(unit) {}
-  ~SerialTransmitter() { cancel(); }
+  explicit SerialTransmitter(SerialUnit& unit);
   SerialTransmitter(const SerialTransmitter&) = delete;
   SerialTransmitter& operator=(const SerialTransmitter&) = delete;
 
@@ -27,18 +28,15 @@ class SerialTransmitter {
   sim::Time free_at() const { return free_at_; }
 
  private:
-  struct Scheduled {
-    LineBurst burst;
-    sim::Scheduler::EventId begin, end;
-  };
-  void begin();
-  void finish();
-  void cancel();
+  // LazyPin::Source: IDLE is high unless an own telegram is on the line.
+  bool level_at(sim::Time t) const override;
+  sim::Time next_change_after(sim::Time t) const override;
 
   SerialUnit& unit_;
-  std::deque<Scheduled> queue_;  // own telegrams not yet finished, in time order
-  sim::Time free_at_ = 0;        // end of the last telegram (or release)
-  bool level_ = true;            // line level at free_at_ (light = true)
+  std::deque<LineBurst> sent_;  // own telegrams not yet over, in time order
+  sim::Time free_at_ = 0;       // end of the last telegram (or release)
+  bool level_ = true;           // line level at free_at_ (light = true)
+  LazyPin idle_;
 };
 
 }  // namespace sercon::chip

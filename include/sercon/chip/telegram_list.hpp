@@ -47,6 +47,9 @@ class ListClient {
   virtual void list_fault(const ListFault& fault) = 0;
   // Longest time from a telegram's opening flag to its start report (address in).
   virtual sim::Time start_report_delay() const = 0;
+  // The walk moved on by itself (an item's time came, a window closed): what offer()
+  // would answer may have changed.
+  virtual void list_moved() = 0;
 };
 
 class TelegramList {
@@ -74,6 +77,8 @@ class TelegramList {
   // A telegram whose opening flag began at `start` brings `address`: is it the waiting
   // receive header's? Accepted: `item` is that header, and the walk has moved on.
   Match offer(sim::Time start, std::uint8_t address, ListItem& item);
+  // What offer() would answer now, without taking the telegram.
+  Match would_take(sim::Time start, std::uint8_t address) const;
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
   // it had not been offered (its window may have closed meanwhile: then it is missed).
   void reclaim(const ListItem& item);

@@ -31,7 +31,7 @@ namespace sercon::chip {
 
 class Chip;
 
-class TelegramProcessor : public ChipUnit, private ListClient {
+class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveInterest {
  public:
   explicit TelegramProcessor(Chip& chip);
   ~TelegramProcessor() override;
@@ -75,6 +75,11 @@ class TelegramProcessor : public ChipUnit, private ListClient {
   void end_reached(const ListItem& item) override;
   void list_fault(const ListFault& fault) override;
   sim::Time start_report_delay() const override;
+  void list_moved() override;
+
+  // ReceiveInterest: the receiver reports only what this would act on.
+  bool wants_start(sim::Time start, std::uint8_t address) const override;
+  bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const override;
 
   Chip& chip_;
   RegisterFile& regs_;

@@ -1,7 +1,8 @@
 // A fibre (or any point-to-point serial link): takes a transmitter's line at its input and
-// delivers it to one receiver after a propagation delay, scheduling each change at the time
-// it happens at the far end. It can break and be restored at any time, and can flip line
-// bits at random (seeded). docs/serial-and-ring.md, "Fibre".
+// delivers it to one receiver after a propagation delay. It schedules nothing: each
+// announcement (line.hpp) is passed on at once with its time moved by the delay, so a
+// telegram crosses a ring in one call chain. It can break and be restored at any time, and can flip
+// line bits at random (seeded). docs/serial-and-ring.md, "Fibre".
 #pragma once
 
 #include <cstdint>
@@ -51,13 +52,6 @@ class Fibre {
   std::uint64_t bit_errors() const { return errors_.flipped(); }
 
  private:
-  // What the far end would see now if the fibre were whole.
-  struct FarEnd {
-    bool burst = false;
-    chip::LineCondition condition = chip::LineCondition::Dark;
-    sim::Time period = 0;
-    sim::Time end = 0;  // burst end
-  };
   class Input final : public chip::LineListener {
    public:
     explicit Input(Fibre& fibre) : fibre_(fibre) {}
@@ -68,31 +62,26 @@ class Fibre {
     Fibre& fibre_;
   };
 
-  // A change on its way to the far end: a burst, or a condition at burst.start with
-  // burst.bit_period as its period.
-  struct Delivery {
+  // A change as the far end gets it (far-end time): a burst, or a condition at
+  // burst.start with burst.bit_period as its period.
+  struct Change {
     bool is_burst = false;
     chip::LineCondition condition = chip::LineCondition::Dark;
     chip::LineBurst burst;
-    sim::Scheduler::EventId event;
   };
-  void check_order(sim::Time at);
-  void schedule(Delivery delivery);
-  void deliver();  // the front of pending_ is due
-  void deliver_condition(sim::Time at, chip::LineCondition condition, sim::Time period);
-  void deliver_burst(const chip::LineBurst& burst);
-  void tell_far_end();
-
+  void take(Change change);  // from the input, time already moved by the delay
+  void pass_on(const Change& change);
+  void tell_far_end();  // the far end's present condition, then what is still on its way
   sim::Scheduler& scheduler_;
   double length_m_;
   sim::Time delay_;
   Input input_{*this};
   chip::LineListener* output_ = nullptr;
   bool broken_ = false;
-  FarEnd far_;
-  sim::Time last_input_ = 0;
   BitErrors errors_;
-  std::deque<Delivery> pending_;                   // in time order
+  // What went in and reaches (or reached) the far end, in time order: the change in force
+  // there now and those still on their way (kept while broken, for a restore).
+  std::deque<Change> history_;
   std::vector<sim::Scheduler::EventId> switches_;  // break_at / restore_at
 };
 
