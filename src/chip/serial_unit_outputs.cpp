@@ -17,6 +17,9 @@ std::size_t index_of_pin(unsigned pin) {
   return pin - 1;
 }
 
+// No signal: the TxD pins show the dark level.
+bool is_dark(const RxdSegment& s) { return !s.is_burst && s.condition == LineCondition::Dark; }
+
 }  // namespace
 
 TxdOutputs::TxdOutputs(SerialUnit& unit) : unit_(unit) {
@@ -68,19 +71,7 @@ LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
   return s.is_burst ? LineCondition::Idle : s.condition;
 }
 
-void TxdOutputs::prune() {
-  const sim::Time now = unit_.chip().scheduler().now();
-  while (line_.size() > 1 && line_[1].since <= now) line_.pop_front();
-}
-
-bool TxdOutputs::supersede(sim::Time at) {
-  bool dropped = false;
-  while (!line_.empty() && line_.back().since >= at) {
-    line_.pop_back();
-    dropped = true;
-  }
-  return dropped;
-}
+void TxdOutputs::prune() { drop_replaced_by(line_, unit_.chip().scheduler().now()); }
 
 void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
   prune();
@@ -90,7 +81,7 @@ void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time
     const LineCondition c = last.is_burst ? LineCondition::Idle : last.condition;
     if (!in_burst && c == condition && last.period == period) return;
   }
-  const bool dropped = supersede(at);
+  const bool dropped = drop_announced_from(line_, at);
   line_.push_back(RxdSegment::of(at, condition, period));
   for (Output& out : outputs_) {
     if (out.view.mode == Mode::Line && out.listener) {
@@ -102,7 +93,7 @@ void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time
 
 void TxdOutputs::line_burst(const LineBurst& burst) {
   prune();
-  const bool dropped = supersede(burst.start);
+  const bool dropped = drop_announced_from(line_, burst.start);
   line_.push_back(RxdSegment::of(burst));
   for (Output& out : outputs_) {
     if (out.view.mode == Mode::Line && out.listener) out.listener->line_burst(burst);
@@ -114,16 +105,10 @@ void TxdOutputs::line_burst(const LineBurst& burst) {
 // neither (and drops nothing announced before) leaves the plan as it is.
 bool TxdOutputs::darkness_changes_at_back() const {
   if (line_.size() < 2) return true;
-  const auto dark = [](const RxdSegment& seg) {
-    return !seg.is_burst && seg.condition == LineCondition::Dark;
-  };
-  return dark(line_.back()) != dark(line_[line_.size() - 2]);
+  return is_dark(line_.back()) != is_dark(line_[line_.size() - 2]);
 }
 
-bool TxdOutputs::dark_now() const {
-  const RxdSegment& s = line_now();
-  return !s.is_burst && s.condition == LineCondition::Dark;
-}
+bool TxdOutputs::dark_now() const { return is_dark(line_now()); }
 
 // The TxD pins show whether there is a signal (light level) or none (dark level): they
 // change only where the line goes dark or lights up, rarely, so an event there is cheap.
@@ -132,11 +117,8 @@ void TxdOutputs::plan_pins() {
   s.cancel(pins_event_);
   pins_event_ = {};
   set_pins_following_line();
-  const auto dark = [](const RxdSegment& seg) {
-    return !seg.is_burst && seg.condition == LineCondition::Dark;
-  };
   for (std::size_t i = 1; i < line_.size(); ++i) {
-    if (dark(line_[i]) == dark(line_[i - 1])) continue;
+    if (is_dark(line_[i]) == is_dark(line_[i - 1])) continue;
     pins_event_ = s.at(line_[i].since, [this] {
       pins_event_ = {};
       prune();

@@ -17,6 +17,13 @@ constexpr sim::Time kNever = LazyPin::kNever;
 // 255 nodes needs, far less than the stack allows.
 constexpr int kMaxChain = 600;
 thread_local int chain_depth = 0;
+// One more receiver in the chain for as long as it lives (exceptions included).
+struct ChainLink {
+  ChainLink() { ++chain_depth; }
+  ~ChainLink() { --chain_depth; }
+  ChainLink(const ChainLink&) = delete;
+  ChainLink& operator=(const ChainLink&) = delete;
+};
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
@@ -110,14 +117,8 @@ void SerialReceiver::pass_to_repeater(const Entry& e) {
                              e.segment.since, [this, serial] { forward_deferred(serial); })});
     return;
   }
-  ++chain_depth;
-  try {
-    unit_.repeater().input(e.segment);
-  } catch (...) {
-    --chain_depth;
-    throw;
-  }
-  --chain_depth;
+  const ChainLink link;
+  unit_.repeater().input(e.segment);
 }
 
 // The entry and what was announced after it go again, in order (an entry announced after
@@ -129,14 +130,8 @@ void SerialReceiver::forward_deferred(std::uint64_t serial) {
     if (e.serial >= serial) segments.push_back(e.segment);
   }
   if (segments.empty()) return;  // superseded meanwhile
-  ++chain_depth;
-  try {
-    for (const RxdSegment& s : segments) unit_.repeater().input(s);
-  } catch (...) {
-    --chain_depth;
-    throw;
-  }
-  --chain_depth;
+  const ChainLink link;
+  for (const RxdSegment& s : segments) unit_.repeater().input(s);
 }
 
 // The later word wins (line.hpp): what was announced for `at` or later is dropped, and a

@@ -47,7 +47,7 @@ void SerialRepeater::take_up_received() {
   for (std::size_t i = 1; i < received.size(); ++i) {
     RxdSegment s = received[i];
     s.since = std::max(forward_time(s.since), now);
-    while (!background_.empty() && background_.back().since >= s.since) background_.pop_back();
+    drop_announced_from(background_, s.since);
     background_.push_back(std::move(s));
   }
 }
@@ -56,7 +56,7 @@ void SerialRepeater::input(const RxdSegment& segment) {
   if (!repon_ || unit_.bit_period() == 0) return;
   const sim::Time at = forward_time(segment.since);
   // The later word wins (line.hpp).
-  while (!background_.empty() && background_.back().since >= at) background_.pop_back();
+  drop_announced_from(background_, at);
   prune();
   RxdSegment& out = background_.emplace_back(segment);
   out.since = at;
@@ -86,7 +86,7 @@ void SerialRepeater::refresh() {
     }
   } else if (!repon_) {
     // The own idle fill at a new bit rate (from the end of an own telegram under way).
-    while (!background_.empty() && background_.back().since >= now) background_.pop_back();
+    drop_announced_from(background_, now);
     background_.push_back(RxdSegment::of(now, LineCondition::Idle, unit_.bit_period()));
   } else {
     return;  // REPON = 1: the received signal goes on as it was announced
@@ -98,7 +98,7 @@ void SerialRepeater::refresh() {
 void SerialRepeater::prune() {
   const sim::Time now = unit_.chip().scheduler().now();
   while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
-  while (background_.size() > 1 && background_[1].since <= now) background_.pop_front();
+  drop_replaced_by(background_, now);
 }
 
 // Background segment `index` from `at` on: as it is when it begins there, else joined

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
@@ -30,6 +31,12 @@ struct RxdSegment {
   // fill it is followed by (a fragment without its opening flag decodes to nothing).
   LineCondition condition_at_join() const { return is_burst ? LineCondition::Idle : condition; }
 };
+
+// A line's announced segments in time order, the front in force now (repeater, TxD):
+// drops those announced for `at` or later (the later word wins, line.hpp); true if any.
+bool drop_announced_from(std::deque<RxdSegment>& line, sim::Time at);
+// Drops the segments a later one has replaced by `now`; the one in force stays.
+void drop_replaced_by(std::deque<RxdSegment>& line, sim::Time now);
 
 // Edges in [since, t): Idle has one every 8 bit times, ZeroBits one every bit time, both
 // beginning with an edge at `since`; a burst has its bits' edges, then its trailing fill.
