@@ -164,7 +164,7 @@ void SerialReceiver::cut(Entry& e, sim::Time at) {
   for (std::size_t i = first; i < old.frames.size(); ++i) {
     if (e.frames[i].start_done) started.push_back(old.frames[i].start_bit);
   }
-  e.decode = decode_burst_prefix(e.segment.bits, cut_bit);
+  e.decode = &decode_burst_prefix(e.segment.bits, cut_bit);
   e.frames.resize(first);
   e.frames.resize(e.decode->frames.size());
   work_out(e, first);
@@ -181,8 +181,8 @@ void SerialReceiver::take(Entry& e) {
   if (!s.is_burst || s.period != unit_.bit_period()) return;  // distorted: the monitor counts it
   e.decode =
       s.burst_end() == e.cut
-          ? decode_burst(s.bits)
-          : decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
+          ? &decode_burst(s.bits)
+          : &decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
   e.frames.resize(e.decode->frames.size());
   work_out(e, 0);
 }
@@ -363,8 +363,8 @@ void SerialReceiver::fire_report() {
   const Report r = report_;
   Entry* e = find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
-  const std::shared_ptr<const BurstDecode> decode = e->decode;  // the handler may prune
-  const wire::DecodedFrame& f = decode->frames[r.frame];
+  const SharedBits keep = e->segment.bits;  // the handler may prune the entry
+  const wire::DecodedFrame& f = e->decode->frames[r.frame];
   FrameState& st = e->frames[r.frame];
   const sim::Time start = st.start;
   if (r.telegram) {

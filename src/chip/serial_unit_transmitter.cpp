@@ -50,7 +50,7 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   wire::LineEncoder encoder(level_);
   encoder.telegram(address, data);
   level_ = encoder.level();
-  auto bits = std::make_shared<const wire::LineBits>(encoder.take());
+  auto bits = share_bits(encoder.take());
   const LineBurst burst{begin_at, period, std::move(bits)};
   free_at_ = burst.end();
   while (!sent_.empty() && sent_.front().end() <= now) sent_.pop_front();

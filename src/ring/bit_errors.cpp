@@ -31,8 +31,7 @@ std::uint64_t BitErrors::draw_gap() {
   return static_cast<std::uint64_t>(gap);
 }
 
-std::shared_ptr<const wire::LineBits> BitErrors::apply(
-    const std::shared_ptr<const wire::LineBits>& bits) {
+chip::SharedBits BitErrors::apply(const chip::SharedBits& bits) {
   const std::uint64_t n = bits->size();
   if (!enabled() || gap_ >= n) {
     if (enabled()) gap_ -= n;
@@ -48,7 +47,7 @@ std::shared_ptr<const wire::LineBits> BitErrors::apply(
     pos = gap >= kMax - pos - 1 ? kMax : pos + 1 + gap;
   }
   gap_ = pos - n;
-  return std::make_shared<const wire::LineBits>(
+  return chip::share_bits(
       wire::LineBits::from_packed(std::move(packed), static_cast<std::size_t>(n)));
 }
 

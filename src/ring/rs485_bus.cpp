@@ -116,7 +116,7 @@ LineBurst Rs485Bus::garbled(const std::vector<const Drive*>& drives, sim::Time a
     for (const Drive* d : drives) high = high || level_at(d->burst, mid);
     bits.push_back(high);
   }
-  return LineBurst{at, period, std::make_shared<const wire::LineBits>(std::move(bits))};
+  return LineBurst{at, period, chip::share_bits(std::move(bits))};
 }
 
 void Rs485Bus::drive(std::size_t node, const LineBurst& burst) {

@@ -51,7 +51,7 @@ class LineRecorder : public LineListener {
     LineCondition condition = LineCondition::Dark;
     sim::Time at = 0;  // condition time or burst start
     sim::Time period = 0;
-    std::shared_ptr<const wire::LineBits> bits;
+    chip::SharedBits bits;
   };
 
   explicit LineRecorder(sim::Scheduler& scheduler)
@@ -124,12 +124,11 @@ inline ChipConfig config_at_mbit(int mbit, std::int64_t mclk_hz = 32'000'000) {
 inline sim::Time bit_period_of(int mbit) { return sim::kSecond / (mbit * 1'000'000LL); }
 
 // The line bits of one telegram as an upstream transmitter would send them.
-inline std::shared_ptr<const wire::LineBits> telegram_bits(std::uint8_t address,
-                                                           std::vector<std::uint8_t> data,
-                                                           bool level_before = true) {
+inline chip::SharedBits telegram_bits(std::uint8_t address, std::vector<std::uint8_t> data,
+                                      bool level_before = true) {
   wire::LineEncoder encoder(level_before);
   encoder.telegram(address, data);
-  return std::make_shared<const wire::LineBits>(encoder.take());
+  return chip::share_bits(encoder.take());
 }
 
 struct SerialBench : ChipOnBench {

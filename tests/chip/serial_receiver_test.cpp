@@ -372,7 +372,7 @@ TEST(serial_Receiver, DecodingIsMemoizedPerSharedBitsObject) {
   a.unit<SerialUnit>()->rxd().line_burst(LineBurst{0, t, bits});
   c.unit<SerialUnit>()->rxd().line_burst(LineBurst{0, t, bits});
   EXPECT_EQ(SerialUnit::decode_count(), before + 1);
-  const auto copy = std::make_shared<const wire::LineBits>(*bits);
+  const auto copy = chip::share_bits(*bits);
   scheduler.run_until(1000 * t);
   a.unit<SerialUnit>()->rxd().line_burst(LineBurst{1000 * t, t, copy});
   EXPECT_EQ(SerialUnit::decode_count(), before + 2);
@@ -397,7 +397,7 @@ TEST(serial_Receiver, EveryFrameOfABurstIsReported) {
   wire::LineEncoder enc(true);
   const auto f1 = enc.telegram(0x11, kData);
   const auto f2 = enc.telegram(0x12, kData);
-  const auto bits = std::make_shared<const wire::LineBits>(enc.take());
+  const auto bits = chip::share_bits(enc.take());
   b.unit.rxd().line_burst(LineBurst{0, t, bits});
   b.run_to(2000 * t);
   ASSERT_EQ(ev.got.size(), 2u);

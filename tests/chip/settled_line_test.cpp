@@ -21,11 +21,11 @@ using sim::Time;
 
 constexpr Time kBit = 62'500;
 
-std::shared_ptr<const wire::LineBits> bits_of(std::uint8_t address) {
+chip::SharedBits bits_of(std::uint8_t address) {
   wire::LineEncoder encoder(true);
   const std::vector<std::uint8_t> data = {0x01, 0x02};
   encoder.telegram(address, data);
-  return std::make_shared<const wire::LineBits>(encoder.take());
+  return chip::share_bits(encoder.take());
 }
 
 // What the target hears: each call with the scheduler's time.

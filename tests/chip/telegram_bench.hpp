@@ -64,7 +64,7 @@ class TestFibre final : public LineListener {
       for (std::size_t i = 0; i < bits.size(); ++i) {
         flipped.push_back(i == corrupt_bit_ ? !bits[i] : bits[i]);
       }
-      out.bits = std::make_shared<const wire::LineBits>(std::move(flipped));
+      out.bits = chip::share_bits(std::move(flipped));
     }
     target_->line_burst(out);
   }
@@ -89,11 +89,11 @@ class TestFibre final : public LineListener {
       Seen s;
       s.start = burst.start;
       s.end = burst.end();
-      const auto decode = decode_burst(burst.bits);
-      if (!decode->frames.empty()) {
-        s.address = decode->frames.front().address;
-        s.data = decode->frames.front().data;
-        s.ok = decode->frames.front().ok();
+      const BurstDecode& decode = decode_burst(burst.bits);
+      if (!decode.frames.empty()) {
+        s.address = decode.frames.front().address;
+        s.data = decode.frames.front().data;
+        s.ok = decode.frames.front().ok();
       }
       fibre_.seen.push_back(std::move(s));
     }

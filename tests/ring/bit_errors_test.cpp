@@ -22,11 +22,10 @@ using testing::telegram_bits;
 
 const std::vector<std::uint8_t> kData(40, 0x5A);
 
-std::vector<std::shared_ptr<const wire::LineBits>> run(
-    double p, std::uint64_t seed, int n, const std::shared_ptr<const wire::LineBits>& in) {
+std::vector<chip::SharedBits> run(double p, std::uint64_t seed, int n, const chip::SharedBits& in) {
   BitErrors e;
   e.configure(p, seed);
-  std::vector<std::shared_ptr<const wire::LineBits>> out;
+  std::vector<chip::SharedBits> out;
   for (int i = 0; i < n; ++i) out.push_back(e.apply(in));
   return out;
 }

@@ -61,11 +61,10 @@ inline chip::ChipConfig config_at_mbit(int mbit) {
 }
 inline sim::Time bit_period_of(int mbit) { return sim::kSecond / (mbit * 1'000'000LL); }
 
-inline std::shared_ptr<const wire::LineBits> telegram_bits(std::uint8_t address,
-                                                           std::vector<std::uint8_t> data) {
+inline chip::SharedBits telegram_bits(std::uint8_t address, std::vector<std::uint8_t> data) {
   wire::LineEncoder encoder(true);
   encoder.telegram(address, data);
-  return std::make_shared<const wire::LineBits>(encoder.take());
+  return chip::share_bits(encoder.take());
 }
 
 // Records what a line carries, change by change: the announcements (line.hpp) go through
@@ -79,7 +78,7 @@ class Recorder : public chip::LineListener {
     chip::LineCondition condition = chip::LineCondition::Dark;
     sim::Time at = 0;
     sim::Time period = 0;
-    std::shared_ptr<const wire::LineBits> bits;
+    chip::SharedBits bits;
   };
   explicit Recorder(sim::Scheduler& s) : scheduler_(s), log_(*this), settled_(s, log_) {}
   Recorder(const Recorder&) = delete;

@@ -10,8 +10,8 @@
 #include <memory>
 #include <string_view>
 
+#include "sercon/chip/shared_bits.hpp"
 #include "sercon/sim/time.hpp"
-#include "sercon/wire/line_bits.hpp"
 
 namespace sercon::chip {
 
@@ -43,7 +43,7 @@ constexpr std::string_view to_string(LineCondition c) {
 struct LineBurst {
   sim::Time start = 0;       // leading edge of the first line bit, at this point of the line
   sim::Time bit_period = 0;  // ps per bit (62'500 at 16 Mbit/s)
-  std::shared_ptr<const wire::LineBits> bits;
+  SharedBits bits;
 
   sim::Time duration() const {
     return bits ? static_cast<sim::Time>(bits->size()) * bit_period : 0;

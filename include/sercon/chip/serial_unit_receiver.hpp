@@ -91,7 +91,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
-    std::shared_ptr<const BurstDecode> decode;  // null: not taken (no burst, other rate, reset)
+    const BurstDecode* decode = nullptr;  // of segment.bits; null: not taken (no burst, other
+                                          // rate, reset)
     FrameStates frames;
   };
   struct Report {

@@ -8,7 +8,7 @@
 #include <memory>
 #include <random>
 
-#include "sercon/wire/line_bits.hpp"
+#include "sercon/chip/shared_bits.hpp"
 
 namespace sercon::ring {
 
@@ -20,7 +20,7 @@ class BitErrors {
   double probability() const { return probability_; }
 
   // `bits` itself when no bit is hit, else a copy with the hit levels flipped.
-  std::shared_ptr<const wire::LineBits> apply(const std::shared_ptr<const wire::LineBits>& bits);
+  chip::SharedBits apply(const chip::SharedBits& bits);
   std::uint64_t flipped() const { return flipped_; }  // bits flipped so far
 
  private:
