@@ -37,7 +37,7 @@ sim::Time RxdSegment::burst_end() const {
   return since + static_cast<sim::Time>(bits ? bits->size() : 0) * period;
 }
 
-bool drop_announced_from(std::deque<RxdSegment>& line, sim::Time at) {
+bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at) {
   bool dropped = false;
   while (!line.empty() && line.back().since >= at) {
     line.pop_back();
@@ -46,7 +46,7 @@ bool drop_announced_from(std::deque<RxdSegment>& line, sim::Time at) {
   return dropped;
 }
 
-void drop_replaced_by(std::deque<RxdSegment>& line, sim::Time now) {
+void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now) {
   while (line.size() > 1 && line[1].since <= now) line.pop_front();
 }
 

@@ -128,7 +128,10 @@ void SerialRepeater::emit_from(sim::Time t) {
   }
   for (;;) {
     if (inside_own) {
-      if (own_[k].start == pos) out.line_burst(own_[k]);
+      if (own_[k].start == pos) {
+        const LineBurst burst = own_[k];  // a copy: the call may add to own_
+        out.line_burst(burst);
+      }
       pos = own_[k].end();
       ++k;
       inside_own = false;

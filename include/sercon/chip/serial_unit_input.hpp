@@ -4,11 +4,11 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
 #include "sercon/sim/time.hpp"
+#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -34,9 +34,9 @@ struct RxdSegment {
 
 // A line's announced segments in time order, the front in force now (repeater, TxD):
 // drops those announced for `at` or later (the later word wins, line.hpp); true if any.
-bool drop_announced_from(std::deque<RxdSegment>& line, sim::Time at);
+bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at);
 // Drops the segments a later one has replaced by `now`; the one in force stays.
-void drop_replaced_by(std::deque<RxdSegment>& line, sim::Time now);
+void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now);
 
 // Edges in [since, t): Idle has one every 8 bit times, ZeroBits one every bit time, both
 // beginning with an edge at `since`; a burst has its bits' edges, then its trailing fill.

@@ -7,13 +7,13 @@
 #pragma once
 
 #include <array>
-#include <deque>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/scheduler.hpp"
 #include "sercon/sim/signal.hpp"
 #include "sercon/sim/time.hpp"
+#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -73,7 +73,7 @@ class TxdOutputs {
   std::array<Output, 6> outputs_{};
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).
-  std::deque<RxdSegment> line_;
+  sim::VectorQueue<RxdSegment> line_;
   sim::Scheduler::EventId pins_event_{};
 };
 

@@ -9,11 +9,10 @@
 // only own telegrams and their idle fill leave. docs/serial-and-ring.md, "Repeater".
 #pragma once
 
-#include <deque>
-
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/time.hpp"
+#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -48,8 +47,8 @@ class SerialRepeater {
   bool repon_ = false;
   // What leaves TxD when no own telegram is in the way, in time order, the front in force
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
-  std::deque<RxdSegment> background_;
-  std::deque<LineBurst> own_;  // own telegrams not yet over, in time order
+  sim::VectorQueue<RxdSegment> background_;
+  sim::VectorQueue<LineBurst> own_;  // own telegrams not yet over, in time order
 };
 
 }  // namespace sercon::chip

@@ -6,11 +6,11 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <span>
 
 #include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
+#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -33,9 +33,9 @@ class SerialTransmitter final : private LazyPin::Source {
   sim::Time next_change_after(sim::Time t) const override;
 
   SerialUnit& unit_;
-  std::deque<LineBurst> sent_;  // own telegrams not yet over, in time order
-  sim::Time free_at_ = 0;       // end of the last telegram (or release)
-  bool level_ = true;           // line level at free_at_ (light = true)
+  sim::VectorQueue<LineBurst> sent_;  // own telegrams not yet over, in time order
+  sim::Time free_at_ = 0;             // end of the last telegram (or release)
+  bool level_ = true;                 // line level at free_at_ (light = true)
   LazyPin idle_;
 };
 

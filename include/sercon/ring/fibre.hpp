@@ -6,12 +6,12 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <vector>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/ring/bit_errors.hpp"
 #include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::ring {
 
@@ -81,7 +81,7 @@ class Fibre {
   BitErrors errors_;
   // What went in and reaches (or reached) the far end, in time order: the change in force
   // there now and those still on their way (kept while broken, for a restore).
-  std::deque<Change> history_;
+  sim::VectorQueue<Change> history_;
   std::vector<sim::Scheduler::EventId> switches_;  // break_at / restore_at
 };
 
