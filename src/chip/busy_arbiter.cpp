@@ -1,6 +1,7 @@
 #include "sercon/chip/busy_arbiter.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace sercon::chip {
 
@@ -13,14 +14,12 @@ BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, const MclkGrid& mclk, std::u
 
 BusyArbiter::~BusyArbiter() { scheduler_.cancel(release_event_); }
 
-void BusyArbiter::internal_access(std::uint16_t word) {
-  // A list walk reads many words in one instant: work out its MCLK period once.
-  const sim::Time now = scheduler_.now();
-  if (now != cached_now_) {
-    cached_now_ = now;
-    cached_period_ = period_index(now);
-  }
-  last_used_.at(word) = cached_period_;
+void BusyArbiter::internal_access_run(std::uint16_t first, std::size_t count) {
+  if (count == 0) return;
+  if (first + count > last_used_.size())
+    throw std::out_of_range("BusyArbiter: word beyond the RAM");
+  const auto begin = last_used_.begin() + first;
+  std::fill(begin, begin + static_cast<std::ptrdiff_t>(count), current_period());
 }
 
 bool BusyArbiter::host_access(std::uint16_t word) {

@@ -1,5 +1,7 @@
 #include "sercon/chip/telegram_list.hpp"
 
+#include <array>
+
 namespace sercon::chip {
 
 using telegram::Kind;
@@ -62,11 +64,14 @@ ListItem TelegramList::read_item(std::uint16_t address) {
       item.time = ram_.read(address + telegram::kTimeWord);
       return item;
     case Kind::Receive:
-    case Kind::Transmit:
-      item.time = ram_.read(address + telegram::kTimeWord);
-      item.length = ram_.read(address + telegram::kLengthWord);
-      item.next = telegram::pointer(ram_.read(address + telegram::kNextWord));
+    case Kind::Transmit: {
+      std::array<std::uint16_t, 3> words{};  // TRT, TLEN, PT
+      ram_.read_run(address + telegram::kTimeWord, words);
+      item.time = words[0];
+      item.length = words[1];
+      item.next = telegram::pointer(words[2]);
       return item;
+    }
   }
   return item;
 }

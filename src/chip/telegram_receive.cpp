@@ -1,6 +1,7 @@
 #include "sercon/chip/telegram_receive.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace sercon::chip {
 
@@ -70,8 +71,10 @@ sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
   std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
   for (std::uint32_t n = 0;; ++n) {
     if (n >= ram_.size()) throw ListFault("receive containers without LASTDC");
-    const telegram::Container c = telegram::container_of(ram_.read(control));
-    const std::uint16_t pos = ram_.read(control + 1);
+    std::array<std::uint16_t, telegram::kReceiveContainerWords> head{};  // control, POS
+    ram_.read_run(control, head);
+    const telegram::Container c = telegram::container_of(head[0]);
+    const std::uint16_t pos = head[1];
     const std::uint32_t data = control + telegram::kReceiveContainerWords;
     // The words of this container that arrived: POS .. POS + LEN of the telegram.
     const std::size_t first = std::min<std::size_t>(pos, words_.size());
@@ -83,7 +86,7 @@ sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
     } else {
       // Double buffer: the data goes into the buffer VAL does not name.
       if (storage.dbuf && !val) buffer += c.len;
-      for (std::uint32_t i = 0; i < arrived.size(); ++i) ram_.write(buffer + i, arrived[i]);
+      ram_.write_run(buffer, arrived);
     }
     if (c.svfl) {
       const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),

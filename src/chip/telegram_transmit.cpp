@@ -27,7 +27,7 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
       dma_.transmit(container_);
     } else {
       const std::uint32_t buffer = data + (storage.dbuf && val ? c.len : 0u);
-      for (std::uint16_t i = 0; i < c.len; ++i) container_[i] = ram_.read(buffer + i);
+      ram_.read_run(buffer, container_);
     }
     if (c.svfl) {
       const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),

@@ -4,6 +4,7 @@
 // (delta spec 2.8). Times are exact picoseconds on the MCLK grid from time 0.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -128,6 +129,35 @@ TEST(Busy, InternalPortChecksTheAddress) {
   ChipOnBench bench;
   EXPECT_THROW(bench.chip->tp_ram_read(2048), std::out_of_range);
   EXPECT_THROW(bench.chip->tp_ram_write(2048, 0), std::out_of_range);
+}
+
+// A run through the internal port is the same as one access per word: every word of it
+// collides in the period, the words beside it do not, and each counts as an access.
+TEST(Busy, RunOfWordsMarksEachWordLikeSingleAccesses) {
+  ChipOnBench bench(mclk(32'000'000));
+  bench.scheduler.run_until(100'000);
+  const std::array<std::uint16_t, 3> words{0x1111, 0x2222, 0x3333};
+  bench.chip->tp_ram_write_run(0x0100, words);
+  std::array<std::uint16_t, 3> back{};
+  bench.chip->tp_ram_read_run(0x0100, back);
+  EXPECT_EQ(back, words);
+  EXPECT_EQ(bench.chip->tp_ram_accesses(), 6u);
+  BusCycle c;
+  c.mcsn0 = false;
+  c.mcsn1 = false;
+  c.bhen = false;
+  for (std::uint16_t w = 0x00FF; w <= 0x0103; ++w) {
+    c.address = static_cast<std::uint16_t>(2 * w);  // byte address of the word
+    EXPECT_EQ(bench.chip->bus(c).busy, w >= 0x0100 && w <= 0x0102) << w;
+  }
+}
+
+TEST(Busy, RunBeyondTheRamDoesNothing) {
+  ChipOnBench bench;
+  std::array<std::uint16_t, 2> out{};
+  EXPECT_THROW(bench.chip->tp_ram_read_run(2047, out), std::out_of_range);
+  EXPECT_THROW(bench.chip->tp_ram_write_run(2047, out), std::out_of_range);
+  EXPECT_EQ(bench.chip->tp_ram_accesses(), 0u);
 }
 
 }  // namespace

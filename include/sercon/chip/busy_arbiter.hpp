@@ -4,6 +4,7 @@
 // MCLK period k runs from MCLK edge k to edge k + 1 (MclkGrid).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -23,7 +24,10 @@ class BusyArbiter {
   BusyArbiter& operator=(const BusyArbiter&) = delete;
 
   // The telegram processor uses `word` (< ram_words) now, in the current MCLK period.
-  void internal_access(std::uint16_t word);
+  // Inline: a list walk makes hundreds of these per cycle.
+  void internal_access(std::uint16_t word) { last_used_.at(word) = current_period(); }
+  // The same for the `count` words from `first` (all < ram_words), one period lookup.
+  void internal_access_run(std::uint16_t first, std::size_t count);
   // The µP accesses `word` (< ram_words) now. Returns true when it collides and BUSYN
   // goes low.
   bool host_access(std::uint16_t word);
@@ -33,6 +37,15 @@ class BusyArbiter {
 
  private:
   Edge period_index(sim::Time t) const { return mclk_.last_at_or_before(t); }
+  // A list walk touches many words in one instant: its MCLK period is worked out once.
+  Edge current_period() {
+    const sim::Time now = scheduler_.now();
+    if (now != cached_now_) {
+      cached_now_ = now;
+      cached_period_ = period_index(now);
+    }
+    return cached_period_;
+  }
   void release();
 
   sim::Scheduler& scheduler_;

@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -78,8 +79,22 @@ class Chip {
   // --- the telegram processor's RAM port (internal side) ------------------------------
   // Records the word as in use during the present MCLK period (BUSYN for a µP access to
   // it in that period). `word` must be < ram().size().
-  std::uint16_t tp_ram_read(std::uint16_t word);
-  void tp_ram_write(std::uint16_t word, std::uint16_t value);
+  // Inline: the list walk makes hundreds of these per cycle.
+  std::uint16_t tp_ram_read(std::uint16_t word) {
+    const std::uint16_t value = ram_.read(word);  // throws std::out_of_range first
+    busy_.internal_access(word);
+    ++tp_ram_accesses_;
+    return value;
+  }
+  void tp_ram_write(std::uint16_t word, std::uint16_t value) {
+    ram_.write(word, value);
+    busy_.internal_access(word);
+    ++tp_ram_accesses_;
+  }
+  // A run of words from `first` (all < ram().size(), else std::out_of_range and nothing
+  // done): the same as one tp_ram_read / tp_ram_write per word, in one go.
+  void tp_ram_read_run(std::uint16_t first, std::span<std::uint16_t> out);
+  void tp_ram_write_run(std::uint16_t first, std::span<const std::uint16_t> words);
   // Words the telegram processor has read or written since the chip was built (a measure
   // of its work: statistics, and the fuzzer's work budget).
   std::uint64_t tp_ram_accesses() const { return tp_ram_accesses_; }

@@ -4,7 +4,10 @@
 // "Bad lists").
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 
 #include "sercon/chip/chip.hpp"
@@ -33,6 +36,21 @@ class TelegramRam {
     check(word);
     chip_.tp_ram_write(static_cast<std::uint16_t>(word), value);
   }
+  // Words first .. first + out.size() - 1, as one read() each: the words inside the RAM
+  // are read (and marked for BUSYN), then a ListFault if the run reaches beyond it.
+  void read_run(std::uint32_t first, std::span<std::uint16_t> out) {
+    const std::size_t inside = words_inside(first, out.size());
+    if (inside != 0) chip_.tp_ram_read_run(static_cast<std::uint16_t>(first), out.first(inside));
+    if (inside < out.size()) throw ListFault("list structure beyond the RAM");
+  }
+  // The same for writes.
+  void write_run(std::uint32_t first, std::span<const std::uint16_t> words) {
+    const std::size_t inside = words_inside(first, words.size());
+    if (inside != 0) {
+      chip_.tp_ram_write_run(static_cast<std::uint16_t>(first), words.first(inside));
+    }
+    if (inside < words.size()) throw ListFault("list structure beyond the RAM");
+  }
   // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
   void count_error(std::uint32_t word) {
     const std::uint16_t n = read(word);
@@ -40,6 +58,9 @@ class TelegramRam {
   }
 
  private:
+  std::size_t words_inside(std::uint32_t first, std::size_t count) const {
+    return first >= size_ ? 0 : std::min<std::size_t>(count, size_ - first);
+  }
   void check(std::uint32_t word) const {
     if (word >= size_) throw ListFault("list structure beyond the RAM");
   }
