@@ -122,6 +122,9 @@ void LineEncoder::stuffed_bytes(std::span<const std::uint8_t> bytes) {
 
 EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::uint8_t> data) {
   const std::size_t start = size();
+  // The chip codes one telegram per encoder: one allocation for all of it (flags, pending
+  // bits, and at most 10 bits per stuffed byte) rather than growing it by doubling.
+  if (start == 0) bits_.reserve(pending_count_ + 16 + 10 * (data.size() + 3));
   put_decoded(0x7E, 8);
   ones_run_ = 0;
   Fcs16 fcs;

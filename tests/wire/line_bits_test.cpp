@@ -103,5 +103,27 @@ TEST(LineBits, PackedRoundTrip) {
   EXPECT_EQ(a.packed()[0], 0x00);
 }
 
+// A new line holds no buffer until its first bit; every read of it must still work.
+TEST(LineBits, EmptyLineReadsAndGrows) {
+  LineBits a;
+  EXPECT_TRUE(a.packed().empty());
+  EXPECT_TRUE(a.packed_copy().empty());
+  EXPECT_EQ(a.word_at(0), 0u);
+  EXPECT_THROW((void)a.at(0), std::out_of_range);
+  EXPECT_EQ(a, LineBits());
+  EXPECT_EQ(a, LineBits::from_packed({}, 0));
+  a.clear();
+  a.append(LineBits());
+  a.append(0, 0);
+  EXPECT_TRUE(a.empty());
+  LineBits dark;
+  dark.append_run(false, 3);
+  EXPECT_EQ(dark.packed_copy(), std::vector<std::uint8_t>{0x00});
+  LineBits b;
+  b.append(LineBits::from_packed({0xA5}, 8));
+  EXPECT_EQ(b.packed_copy(), std::vector<std::uint8_t>{0xA5});
+  EXPECT_EQ(b.word_at(0), 0xA5ull << 56);
+}
+
 }  // namespace
 }  // namespace sercon::wire

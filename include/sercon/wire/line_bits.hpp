@@ -46,9 +46,10 @@ class LineBits {
  private:
   void ensure_capacity(std::size_t bit_count);
 
-  // Always at least ceil(size_/8) + 8 bytes so a word can be read or written at any
+  // Empty until the first bit (an empty line allocates nothing: the chip makes and drops
+  // many), then at least ceil(size_/8) + 8 bytes so a word can be read or written at any
   // bit position without bounds checks; bytes past the last bit are 0.
-  std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(8, 0);
+  std::vector<std::uint8_t> buf_;
   std::size_t size_ = 0;
 };
 
