@@ -195,22 +195,35 @@ void SerialReceiver::work_out(Entry& e, std::size_t first) {
     FrameState& st = e.frames[i];
     st.start = since + static_cast<sim::Time>(f.start_bit) * period;
     st.end = std::min(since + static_cast<sim::Time>(f.end_bit) * period, e.cut);
-    st.telegram_report = pipeline(st.end, period);
-    const std::size_t address_end = d.address_end[i];
-    const sim::Time address_in = since + static_cast<sim::Time>(address_end) * period;
-    st.start_report = address_end > f.end_bit || address_in > e.cut  // no whole address
-                          ? kNever
-                          : pipeline(address_in, period);
+    st.reports_known = false;
   }
+}
+
+SerialReceiver::FrameState& SerialReceiver::with_reports(Entry& e, std::size_t i) const {
+  FrameState& st = e.frames[i];
+  if (st.reports_known) return st;
+  const sim::Time since = e.segment.since, period = e.segment.period;
+  const std::size_t address_end = e.decode->address_end[i];
+  const sim::Time address_in = since + static_cast<sim::Time>(address_end) * period;
+  st.telegram_report = pipeline(st.end, period);
+  st.start_report = address_end > e.decode->frames[i].end_bit || address_in > e.cut
+                        ? kNever  // no whole address
+                        : pipeline(address_in, period);
+  st.reports_known = true;
+  return st;
 }
 
 // Entries over and done with: a later one is in force and no report of theirs is to come.
 void SerialReceiver::prune() {
   const sim::Time now = unit_.chip().scheduler().now();
   while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
-    const Entry& e = timeline_.front();
+    Entry& e = timeline_.front();
     if (e.serial == report_.serial && report_event_.value != 0) return;
-    if (!e.frames.empty() && e.frames.back().telegram_report >= now) return;
+    // The last frame's detection (after its end) still to come?
+    if (!e.frames.empty() && (e.frames.back().end >= now ||
+                              with_reports(e, e.frames.size() - 1).telegram_report >= now)) {
+      return;
+    }
     timeline_.erase(timeline_.begin());
   }
 }
@@ -295,17 +308,26 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
   FrameState& st = e.frames[i];
   bool& done = telegram ? st.end_done : st.start_done;
   if (done) return false;
-  const sim::Time t = telegram ? (on_telegram_ ? st.telegram_report : kNever)
-                               : (on_start_ ? st.start_report : kNever);
+  if (!(telegram ? static_cast<bool>(on_telegram_) : static_cast<bool>(on_start_))) {
+    done = true;
+    return false;
+  }
+  // Cheap refusals first: both reports come after the frame's start (so not in the past
+  // when it is at or after `before`), and most frames pass a chip that wants neither.
+  if (st.start >= before) return false;
+  if (interest_ != nullptr) {
+    const wire::DecodedFrame& f = e.decode->frames[i];
+    const bool wanted = telegram ? interest_->wants_telegram(st.start, f)
+                                 : interest_->wants_start(st.start, f.address);
+    if (!wanted) return false;  // if its time passes meanwhile, it is dropped then
+  }
+  with_reports(e, i);
+  const sim::Time t = telegram ? st.telegram_report : st.start_report;
   if (t < now || t == kNever) {
     done = true;
     return false;
   }
-  if (t >= before) return false;
-  if (interest_ == nullptr) return true;
-  const wire::DecodedFrame& f = e.decode->frames[i];
-  return telegram ? interest_->wants_telegram(st.start, f)
-                  : interest_->wants_start(st.start, f.address);
+  return t < before;
 }
 
 void SerialReceiver::plan_reports() {
@@ -339,9 +361,10 @@ void SerialReceiver::plan_reports() {
 
 void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
+  const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
+  if (planned <= e.segment.since) return;  // its reports all come after the planned one
   sim::Scheduler& s = unit_.chip().scheduler();
   const sim::Time now = s.now();
-  const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
   Report best{planned, 0, 0, false};
   for (std::size_t i = 0; i < e.frames.size(); ++i) {
     if (candidate(e, i, false, now, best.when)) {

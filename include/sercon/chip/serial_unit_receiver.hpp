@@ -56,11 +56,13 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::vector<RxdSegment> input_from_now() const;
 
  private:
-  // A decoded frame's times, worked out once when it is decoded (or cut).
+  // A decoded frame's times: start and end worked out when it is decoded (or cut), the
+  // report times when first asked for (most frames pass a chip that wants no report).
   struct FrameState {
     sim::Time start = 0, end = 0;   // opening flag at RxD; closing flag's end (or the cut)
     sim::Time start_report = 0;     // address in + pipeline; kNever: no whole address
     sim::Time telegram_report = 0;  // detection
+    bool reports_known = false;     // start_report and telegram_report are worked out
     bool start_done = false, end_done = false;
   };
   // Frame states without an allocation for the usual burst of one or two frames.
@@ -112,8 +114,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::size_t in_force(sim::Time t) const;  // index of the entry in force at t
   Entry* find(std::uint64_t serial);
 
-  void work_out(Entry& e, std::size_t first);               // frame times from frame `first` on
-  sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
+  void work_out(Entry& e, std::size_t first);                   // frame times from frame `first` on
+  FrameState& with_reports(Entry& e, std::size_t frame) const;  // report times worked out
+  sim::Time pipeline(sim::Time t, sim::Time period) const;      // MCLK edge after t + 5.5 bit + 3
   void plan_reports();
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
