@@ -1,7 +1,9 @@
 #include "sercon/chip/line_decode_memo.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <utility>
 
 #include "sercon/chip/line_length.hpp"
@@ -18,6 +20,8 @@ std::unique_ptr<const BurstDecode> run_decoder(const wire::LineBits& bits, std::
   auto result = std::make_unique<BurstDecode>();
   ++decodes;
   if (count == 0) return result;
+  result->frames.reserve(1);  // a burst is one telegram, but for collisions and cuts
+  result->address_end.reserve(1);
   wire::LineDecoder decoder([&result](const wire::DecodedFrame& frame) {
     wire::DecodedFrame f = frame;
     f.start_bit -= 1;  // the lead-in bit
@@ -25,9 +29,8 @@ std::unique_ptr<const BurstDecode> run_decoder(const wire::LineBits& bits, std::
     result->address_end.push_back(f.start_bit + address_end_bit(f.address));
     result->frames.push_back(std::move(f));
   });
-  wire::LineBits lead_in;
-  lead_in.push_back(!bits.level(0));
-  decoder.feed(lead_in);
+  const std::uint8_t lead_in = bits.level(0) ? 0x00 : 0x80;  // the opposite level, MSB first
+  decoder.feed(std::span<const std::uint8_t>(&lead_in, 1), 1);
   decoder.feed(bits.packed(), count);
   if (dark_tail > 0) {
     wire::LineBits tail;
