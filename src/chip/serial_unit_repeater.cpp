@@ -10,6 +10,9 @@
 
 namespace sercon::chip {
 
+SerialRepeater::SerialRepeater(SerialUnit& unit)
+    : unit_(unit), sclk_period_(sim::period_of_hz(unit.chip().config().sclk_hz)) {}
+
 void SerialRepeater::reset() {
   repon_ = false;
   background_.clear();
@@ -30,7 +33,7 @@ void SerialRepeater::release() {
 }
 
 sim::Time SerialRepeater::forward_time(sim::Time t) const {
-  const sim::Time sclk = sim::period_of_hz(unit_.chip().config().sclk_hz);
+  const sim::Time sclk = sclk_period_;
   const sim::Time due = t + SerialUnit::kRepeaterDelayBits * unit_.bit_period();
   return (due + sclk - 1) / sclk * sclk;
 }

@@ -20,7 +20,7 @@ class SerialUnit;
 
 class SerialRepeater {
  public:
-  explicit SerialRepeater(SerialUnit& unit) : unit_(unit) {}
+  explicit SerialRepeater(SerialUnit& unit);
 
   void reset();
   void release();
@@ -44,6 +44,7 @@ class SerialRepeater {
   void emit_background(sim::Time at, std::size_t index, bool joined);
 
   SerialUnit& unit_;
+  sim::Time sclk_period_;  // the grid a forwarded telegram leaves on (fixed by the config)
   bool repon_ = false;
   // What leaves TxD when no own telegram is in the way, in time order, the front in force
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
