@@ -30,17 +30,6 @@ void RegisterFile::bus_write(std::uint8_t address, std::uint16_t value, std::uin
   for (const WriteHook& hook : write_hooks_[address]) hook(value, before);
 }
 
-void RegisterFile::set_bits(std::uint8_t address, std::uint16_t mask, bool on) {
-  put(address, mask, on ? mask : 0);
-}
-
-void RegisterFile::put(std::uint8_t address, std::uint16_t mask, std::uint16_t bits) {
-  const std::uint16_t before = values_.at(address);
-  const auto next = static_cast<std::uint16_t>((before & ~mask) | (bits & mask));
-  values_[address] = next;
-  if (next != before) changed(address);
-}
-
 void RegisterFile::lock(std::uint8_t address, std::uint16_t mask, bool locked) {
   auto& l = locked_.at(address);
   l = static_cast<std::uint16_t>(locked ? (l | mask) : (l & ~mask));

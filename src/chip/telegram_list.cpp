@@ -49,11 +49,13 @@ void TelegramList::fault(const ListFault& f) {
   client_.list_fault(f);
 }
 
-ListItem TelegramList::read_item(std::uint16_t address) {
+// Fills `item` in place (a ListItem returned by value was assembled on the stack and
+// reloaded whole: a store-forwarding stall per item).
+void TelegramList::read_item(std::uint16_t address, ListItem& item) {
   // Every item takes at least two words, so a walk reading more items than half the RAM
   // has looped.
   if (++items_read_ > ram_.size() / 2u) throw ListFault("list loops (no end marker reached)");
-  ListItem item;
+  item = ListItem{};
   item.address = address;
   item.word0 = ram_.read(address);
   item.kind = telegram::kind_of(item.word0);
@@ -62,7 +64,7 @@ ListItem TelegramList::read_item(std::uint16_t address) {
       throw ListFault("list item of kind 10 (neither header nor end marker)");
     case Kind::EndMarker:
       item.time = ram_.read(address + telegram::kTimeWord);
-      return item;
+      return;
     case Kind::Receive:
     case Kind::Transmit: {
       std::array<std::uint16_t, 3> words{};  // TRT, TLEN, PT
@@ -70,35 +72,38 @@ ListItem TelegramList::read_item(std::uint16_t address) {
       item.time = words[0];
       item.length = words[1];
       item.next = telegram::pointer(words[2]);
-      return item;
+      return;
     }
   }
-  return item;
 }
 
-void TelegramList::walk(std::uint16_t address) { walk_from(read_item(address)); }
+void TelegramList::walk(std::uint16_t address) {
+  ListItem item;
+  read_item(address, item);
+  walk_from(item);
+}
 
 // Arms items until one waits for something; items already over are settled on the way.
 // A loop, not recursion: a long list of late items must not grow the stack.
-void TelegramList::walk_from(ListItem item) {
-  for (;;) {
-    item_ = item;
-    if (arm(item_)) return;
-    if (item_.kind == Kind::EndMarker) return;
-    item = read_item(item_.next);
+void TelegramList::walk_from(const ListItem& first) {
+  item_ = first;
+  ListItem next;
+  while (!arm(item_) && item_.kind != Kind::EndMarker) {
+    read_item(item_.next, next);
+    item_ = next;
   }
 }
 
 bool TelegramList::arm(const ListItem& item) {
   switch (item.kind) {
     case Kind::Transmit:
-      event_ = time_base_.at_cycle_time(item.time, [this] { fire_transmit(); });
+      event_ = time_base_.at_cycle_time(item.time, &TelegramList::transmit_time, this);
       state_ = event_ != 0 ? State::Transmit : State::Idle;
       return event_ != 0;  // late: not sent in this cycle
     case Kind::Receive:
       return arm_receive(item);
     case Kind::EndMarker:
-      event_ = time_base_.at_cycle_time(item.time, [this] { fire_end(); });
+      event_ = time_base_.at_cycle_time(item.time, &TelegramList::end_time, this);
       state_ = event_ != 0 ? State::End : State::Idle;
       if (event_ == 0) client_.end_reached(item);
       return event_ != 0;
@@ -126,6 +131,10 @@ bool TelegramList::arm_receive(const ListItem& item) {
   });
   return true;
 }
+
+void TelegramList::transmit_time(void* list) { static_cast<TelegramList*>(list)->fire_transmit(); }
+
+void TelegramList::end_time(void* list) { static_cast<TelegramList*>(list)->fire_end(); }
 
 void TelegramList::fire_transmit() {
   event_ = 0;

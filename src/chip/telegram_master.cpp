@@ -39,7 +39,8 @@ bool MasterMst::send() {
   serial_.send(now, 0xFF, phase);
   awaiting_ = true;
   if (jtrdel2_.get(regs_) != 0) {
-    window_end_ = time_base_.at_cycle_time(jtrdel2_.get(regs_), [this] { window_ends(); });
+    window_end_ = time_base_.at_cycle_time(
+        jtrdel2_.get(regs_), [](void* mst) { static_cast<MasterMst*>(mst)->window_ends(); }, this);
   }
   return true;
 }

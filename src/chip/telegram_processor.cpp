@@ -194,10 +194,13 @@ void TelegramProcessor::after_service_work(sim::Time work) {
     scheduler_.cancel(rscend_event_);
   }
   rscend_at_ = at;
-  rscend_event_ = scheduler_.at(at, [this] {
-    rscend_event_ = {};
-    interrupts_.raise(Irq::Rscend);
-  });
+  rscend_event_ = scheduler_.at(at, &TelegramProcessor::service_work_done, this);
+}
+
+void TelegramProcessor::service_work_done(void* processor) {
+  auto& self = *static_cast<TelegramProcessor*>(processor);
+  self.rscend_event_ = {};
+  self.interrupts_.raise(Irq::Rscend);
 }
 
 void TelegramProcessor::receive_missed(const ListItem& item) {
@@ -224,10 +227,13 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
   const sim::Time end = serial_.send(now, item.adr(), data);
   // The previous telegram's end may be due at this very instant: raise it now.
   if (scheduler_.cancel(tend_event_)) interrupts_.raise(Irq::Tend);
-  tend_event_ = scheduler_.at(end, [this] {
-    tend_event_ = {};
-    interrupts_.raise(Irq::Tend);
-  });
+  tend_event_ = scheduler_.at(end, &TelegramProcessor::transmission_ended, this);
+}
+
+void TelegramProcessor::transmission_ended(void* processor) {
+  auto& self = *static_cast<TelegramProcessor*>(processor);
+  self.tend_event_ = {};
+  self.interrupts_.raise(Irq::Tend);
 }
 
 void TelegramProcessor::end_reached(const ListItem&) { interrupts_.raise(Irq::Endmk); }

@@ -55,7 +55,8 @@ TimeBase::Pending* TimeBase::find(CycleEvent id) const {
 void TimeBase::release(Pending& pending) {
   const std::uint64_t index = pending.id & ((std::uint64_t{1} << kIndexBits) - 1);
   pending.id = 0;
-  pending.callback = nullptr;  // what it captured goes now, as when the event was erased
+  pending.action = nullptr;
+  if (pending.callback) pending.callback = nullptr;  // what it captured goes now
   free_slots_.push_back(static_cast<std::uint32_t>(index - 1));
 }
 
@@ -120,9 +121,8 @@ void TimeBase::drop_future_events() {
   }
 }
 
-TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
-                                             std::function<void()> callback) {
-  if (!running_ || tick_of(cycle_time) <= ticks_.count_through(now_edge())) return 0;
+TimeBase::Pending* TimeBase::claim(std::int64_t cycle_time) {
+  if (!running_ || tick_of(cycle_time) <= ticks_.count_through(now_edge())) return nullptr;
   std::uint32_t index;
   if (!free_slots_.empty()) {
     index = free_slots_.back();
@@ -138,9 +138,26 @@ TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
   Pending& pending = *slots_[index];
   pending.id = next_sequence_++ << kIndexBits | (index + 1u);
   pending.cycle_time = cycle_time;
-  pending.callback = std::move(callback);
-  schedule(pending);
-  return pending.id;
+  return &pending;
+}
+
+TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
+                                             std::function<void()> callback) {
+  Pending* pending = claim(cycle_time);
+  if (pending == nullptr) return 0;
+  pending->callback = std::move(callback);
+  schedule(*pending);
+  return pending->id;
+}
+
+TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action,
+                                             void* context) {
+  Pending* pending = claim(cycle_time);
+  if (pending == nullptr) return 0;
+  pending->action = action;
+  pending->context = context;
+  schedule(*pending);
+  return pending->id;
 }
 
 void TimeBase::schedule(Pending& pending) {
@@ -151,6 +168,13 @@ void TimeBase::schedule(Pending& pending) {
 // The slot is freed before the callback runs: the callback may ask for new events.
 void TimeBase::fire(void* context) {
   auto& pending = *static_cast<Pending*>(context);
+  if (pending.action != nullptr) {
+    const sim::Scheduler::Action action = pending.action;
+    void* const action_context = pending.context;
+    pending.owner->release(pending);
+    action(action_context);
+    return;
+  }
   auto callback = std::move(pending.callback);
   pending.owner->release(pending);
   callback();

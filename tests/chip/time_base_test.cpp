@@ -266,6 +266,40 @@ TEST(TimeBase, CycleTimeEventsRunAtTheStep) {
   EXPECT_EQ(ran[1], loaded + (3 + 98 * 25) * t);
 }
 
+// The function + context form (no std::function) keeps the same times, order and slots
+// as the callback form, and a slot it used serves a callback event afterwards.
+TEST(TimeBase, CycleTimeActionsRunLikeCallbacks) {
+  TimingBench b(config_mhz(25));
+  b.chip.reg_write(kClockDiv, 3 << 8 | 24);
+  b.chip.reg_write(kTcntst, 2);
+  b.run_to(5 * kMicrosecond);
+  b.cycles().mst_detected(b.now());
+  b.run_to(6 * kMicrosecond);
+  auto& tb = b.time_base();
+  std::vector<std::pair<char, Time>> ran;
+  struct Mark {
+    std::vector<std::pair<char, Time>>* ran;
+    TimingBench* bench;
+    static void run(void* mark) {
+      auto& m = *static_cast<Mark*>(mark);
+      m.ran->emplace_back('a', m.bench->now());
+    }
+  } mark{&ran, &b};
+  const auto action = tb.at_cycle_time(20, &Mark::run, &mark);
+  tb.at_cycle_time(20, [&] { ran.emplace_back('c', b.now()); });
+  EXPECT_EQ(tb.at_cycle_time(1, &Mark::run, &mark), 0u);  // before TCNTST: never
+  ASSERT_TRUE(tb.when(action).has_value());
+  const Time due = *tb.when(action);
+  b.run_to(100 * kMicrosecond);
+  EXPECT_EQ(ran, (std::vector<std::pair<char, Time>>{{'a', due}, {'c', due}}));
+  EXPECT_EQ(tb.when(action), std::nullopt);
+  const auto reused = tb.at_cycle_time(150, [&] { ran.emplace_back('d', b.now()); });
+  tb.cancel(action);  // stale: cancels nothing
+  EXPECT_TRUE(tb.when(reused).has_value());
+  b.run_to(1000 * kMicrosecond);
+  EXPECT_EQ(ran.size(), 3u);
+}
+
 // Ids stay valid names: one that ran or was cancelled never names a later event (the
 // slot it used is reused), and events at one time run in the order they were asked for,
 // also when an MCLKDIV change moves them all.

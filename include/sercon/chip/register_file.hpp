@@ -38,9 +38,18 @@ class RegisterFile {
   std::uint16_t value(std::uint8_t address) const { return values_.at(address); }
   bool bit(std::uint8_t address, std::uint16_t mask) const { return (value(address) & mask) != 0; }
   // Sets or clears bits whatever their access (status bits, latched interrupts, W1C).
-  void set_bits(std::uint8_t address, std::uint16_t mask, bool on);
+  // Inline: most calls set a bit that is set already (an interrupt raised every cycle).
+  void set_bits(std::uint8_t address, std::uint16_t mask, bool on) {
+    put(address, mask, on ? mask : 0);
+  }
   // Replaces the bits under `mask` with `bits`.
-  void put(std::uint8_t address, std::uint16_t mask, std::uint16_t bits);
+  void put(std::uint8_t address, std::uint16_t mask, std::uint16_t bits) {
+    const std::uint16_t before = values_.at(address);
+    const auto next = static_cast<std::uint16_t>((before & ~mask) | (bits & mask));
+    if (next == before) return;
+    values_[address] = next;
+    changed(address);
+  }
 
   // RW bits under `mask` ignore bus writes while locked (delta spec 2.6.2: ENTMT and PHAS0
   // while INT_WDOG is set).

@@ -87,10 +87,13 @@ class TelegramList {
   enum class State : std::uint8_t { Idle, Transmit, Receive, End };
 
   void walk(std::uint16_t address);
-  void walk_from(ListItem item);
+  void walk_from(const ListItem& first);
   bool arm(const ListItem& item);  // false: the item is already over, walk on
   bool arm_receive(const ListItem& item);
-  ListItem read_item(std::uint16_t address);
+  void read_item(std::uint16_t address, ListItem& item);
+  // Time-base actions (function + context: no std::function per armed item).
+  static void transmit_time(void* list);
+  static void end_time(void* list);
   void fire_transmit();
   void close_window();
   void fire_end();

@@ -68,6 +68,9 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   void withdraw_mst();
   void finish_receive(const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
+  // Scheduler actions (function + context: no std::function per telegram).
+  static void transmission_ended(void* processor);
+  static void service_work_done(void* processor);
 
   // ListClient
   void transmit_due(const ListItem& item) override;

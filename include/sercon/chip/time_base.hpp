@@ -80,6 +80,9 @@ class TimeBase : public ChipUnit {
   // running cycle. Returns 0 (nothing scheduled) when that step is not ahead. Events are
   // dropped by the next cycle start; listeners re-arm from on_cycle_start.
   CycleEvent at_cycle_time(std::int64_t cycle_time, std::function<void()> callback);
+  // The same with `action(context)` (no std::function: for units that arm several
+  // events per cycle). `context` must outlive the event.
+  CycleEvent at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action, void* context);
   void cancel(CycleEvent event);
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
   std::optional<sim::Time> when(CycleEvent event) const;
@@ -104,12 +107,15 @@ class TimeBase : public ChipUnit {
     TimeBase* owner = nullptr;
     CycleEvent id = 0;  // 0: the slot is free
     std::int64_t cycle_time = 0;
-    std::function<void()> callback;
+    std::function<void()> callback;  // used when `action` is null
+    sim::Scheduler::Action action = nullptr;
+    void* context = nullptr;
     sim::Scheduler::EventId event;
     sim::Time when = 0;
   };
   static void fire(void* context);
   Pending* find(CycleEvent id) const;
+  Pending* claim(std::int64_t cycle_time);  // a slot for an event at cycle_time, or null
   void release(Pending& pending);
   Edge now_edge() const { return mclk_.last_at_or_before(scheduler_.now()); }
   std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
