@@ -14,13 +14,7 @@ BusyArbiter::BusyArbiter(sim::Scheduler& scheduler, const MclkGrid& mclk, std::u
 
 BusyArbiter::~BusyArbiter() { scheduler_.cancel(release_event_); }
 
-void BusyArbiter::internal_access_run(std::uint16_t first, std::size_t count) {
-  if (count == 0) return;
-  if (first + count > last_used_.size())
-    throw std::out_of_range("BusyArbiter: word beyond the RAM");
-  const auto begin = last_used_.begin() + first;
-  std::fill(begin, begin + static_cast<std::ptrdiff_t>(count), current_period());
-}
+void BusyArbiter::beyond_the_ram() { throw std::out_of_range("BusyArbiter: word beyond the RAM"); }
 
 bool BusyArbiter::host_access(std::uint16_t word) {
   const sim::Time now = scheduler_.now();

@@ -1,6 +1,5 @@
 #include "sercon/chip/chip.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -414,22 +413,6 @@ void Chip::ram_write(std::uint16_t word_address, std::uint16_t value) {
 
 // --- telegram processor's RAM port ----------------------------------------------------
 
-void Chip::tp_ram_read_run(std::uint16_t first, std::span<std::uint16_t> out) {
-  const std::span<const std::uint16_t> ram = ram_.contents();
-  if (first + out.size() > ram.size()) throw std::out_of_range("tp_ram_read_run beyond the RAM");
-  std::copy_n(ram.begin() + first, out.size(), out.begin());
-  busy_.internal_access_run(first, out.size());
-  tp_ram_accesses_ += out.size();
-}
-
-void Chip::tp_ram_write_run(std::uint16_t first, std::span<const std::uint16_t> words) {
-  if (first + words.size() > ram_.size())
-    throw std::out_of_range("tp_ram_write_run beyond the RAM");
-  for (std::size_t i = 0; i < words.size(); ++i) {
-    ram_.write(static_cast<std::uint16_t>(first + i), words[i]);
-  }
-  busy_.internal_access_run(first, words.size());
-  tp_ram_accesses_ += words.size();
-}
+void Chip::tp_run_beyond_the_ram() { throw std::out_of_range("tp_ram run beyond the RAM"); }
 
 }  // namespace sercon::chip

@@ -119,12 +119,18 @@ void CycleControl::on_register_change(std::uint8_t address) {
   if (cycle_time && mode_ == Mode::MasterTimer && timer_idle_) start_timer_now();
 }
 
-// Runs `action` at the `edges`-th MCLK edge after the first edge at or after `from`.
-void CycleControl::after_edges(sim::Time from, Edge edges, void (CycleControl::*action)()) {
+void CycleControl::after_edges(sim::Time from, Edge edges, sim::Scheduler::Action action) {
   std::erase_if(recognitions_, [this](auto id) { return !scheduler_.pending(id); });
   const Edge edge = time_base_.mclk().first_at_or_after(from) + edges;
-  recognitions_.push_back(
-      scheduler_.at(time_base_.mclk().time_of(edge), [this, action] { (this->*action)(); }));
+  recognitions_.push_back(scheduler_.at(time_base_.mclk().time_of(edge), action, this));
+}
+
+void CycleControl::cyc_clk_action(void* control) {
+  static_cast<CycleControl*>(control)->cyc_clk_recognised();
+}
+
+void CycleControl::slave_mst_action(void* control) {
+  static_cast<CycleControl*>(control)->slave_mst();
 }
 
 void CycleControl::mst_detected(sim::Time when) {
@@ -133,7 +139,7 @@ void CycleControl::mst_detected(sim::Time when) {
                                 " ps is before now (" + std::to_string(scheduler_.now()) + " ps)");
   }
   if (!running_) return;
-  after_edges(when, kMstSyncEdges, &CycleControl::slave_mst);
+  after_edges(when, kMstSyncEdges, &CycleControl::slave_mst_action);
 }
 
 void CycleControl::slave_mst() {
@@ -150,7 +156,7 @@ void CycleControl::on_cyc_clk(sim::Level level) {
   cyc_clk_high_ = high;
   const bool active_edge = cycpol_.on(regs_) ? !high : high;
   if (!active_edge || !running_ || mode_ != Mode::MasterCycClk) return;
-  after_edges(scheduler_.now(), kCycClkSyncEdges, &CycleControl::cyc_clk_recognised);
+  after_edges(scheduler_.now(), kCycClkSyncEdges, &CycleControl::cyc_clk_action);
 }
 
 void CycleControl::cyc_clk_recognised() {

@@ -27,7 +27,12 @@ class BusyArbiter {
   // Inline: a list walk makes hundreds of these per cycle.
   void internal_access(std::uint16_t word) { last_used_.at(word) = current_period(); }
   // The same for the `count` words from `first` (all < ram_words), one period lookup.
-  void internal_access_run(std::uint16_t first, std::size_t count);
+  void internal_access_run(std::uint16_t first, std::size_t count) {
+    if (first + count > last_used_.size()) beyond_the_ram();
+    const Edge period = current_period();
+    std::int64_t* used = last_used_.data() + first;
+    for (std::size_t i = 0; i < count; ++i) used[i] = period;
+  }
   // The µP accesses `word` (< ram_words) now. Returns true when it collides and BUSYN
   // goes low.
   bool host_access(std::uint16_t word);
@@ -47,6 +52,7 @@ class BusyArbiter {
     return cached_period_;
   }
   void release();
+  [[noreturn]] static void beyond_the_ram();
 
   sim::Scheduler& scheduler_;
   MclkGrid mclk_;

@@ -93,8 +93,21 @@ class Chip {
   }
   // A run of words from `first` (all < ram().size(), else std::out_of_range and nothing
   // done): the same as one tp_ram_read / tp_ram_write per word, in one go.
-  void tp_ram_read_run(std::uint16_t first, std::span<std::uint16_t> out);
-  void tp_ram_write_run(std::uint16_t first, std::span<const std::uint16_t> words);
+  void tp_ram_read_run(std::uint16_t first, std::span<std::uint16_t> out) {
+    const std::span<const std::uint16_t> ram = ram_.contents();
+    if (first + out.size() > ram.size()) tp_run_beyond_the_ram();
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = ram[first + i];
+    busy_.internal_access_run(first, out.size());
+    tp_ram_accesses_ += out.size();
+  }
+  void tp_ram_write_run(std::uint16_t first, std::span<const std::uint16_t> words) {
+    if (first + words.size() > ram_.size()) tp_run_beyond_the_ram();
+    for (std::size_t i = 0; i < words.size(); ++i) {
+      ram_.write(static_cast<std::uint16_t>(first + i), words[i]);
+    }
+    busy_.internal_access_run(first, words.size());
+    tp_ram_accesses_ += words.size();
+  }
   // Words the telegram processor has read or written since the chip was built (a measure
   // of its work: statistics, and the fuzzer's work budget).
   std::uint64_t tp_ram_accesses() const { return tp_ram_accesses_; }
@@ -158,6 +171,7 @@ class Chip {
   void refresh_pin_status_bits();
   void refresh_outputs();
   void on_sermode_write(std::uint16_t written);
+  [[noreturn]] static void tp_run_beyond_the_ram();
   BusResult ram_cycle(const BusCycle& cycle, const ByteLanes& lanes);
   BusResult register_cycle(const BusCycle& cycle, const ByteLanes& lanes);
 
