@@ -18,8 +18,10 @@ void BusyArbiter::beyond_the_ram() { throw std::out_of_range("BusyArbiter: word 
 
 bool BusyArbiter::host_access(std::uint16_t word) {
   const sim::Time now = scheduler_.now();
+  const sim::Time used = last_used_.at(word);
+  if (used < 0) return false;  // never used
   const auto period = period_index(now);
-  if (last_used_.at(word) != period) return false;
+  if (used != now && period_index(used) != period) return false;
   // Low now, high at the next MCLK edge: at most one MCLK period (delta spec 2.8).
   const sim::Time end = mclk_.time_of(period + 1);
   scheduler_.cancel(release_event_);

@@ -25,13 +25,13 @@ class BusyArbiter {
 
   // The telegram processor uses `word` (< ram_words) now, in the current MCLK period.
   // Inline: a list walk makes hundreds of these per cycle.
-  void internal_access(std::uint16_t word) { last_used_.at(word) = current_period(); }
-  // The same for the `count` words from `first` (all < ram_words), one period lookup.
+  void internal_access(std::uint16_t word) { last_used_.at(word) = scheduler_.now(); }
+  // The same for the `count` words from `first` (all < ram_words).
   void internal_access_run(std::uint16_t first, std::size_t count) {
     if (first + count > last_used_.size()) beyond_the_ram();
-    const Edge period = current_period();
-    std::int64_t* used = last_used_.data() + first;
-    for (std::size_t i = 0; i < count; ++i) used[i] = period;
+    const sim::Time now = scheduler_.now();
+    sim::Time* used = last_used_.data() + first;
+    for (std::size_t i = 0; i < count; ++i) used[i] = now;
   }
   // The µP accesses `word` (< ram_words) now. Returns true when it collides and BUSYN
   // goes low.
@@ -42,26 +42,16 @@ class BusyArbiter {
 
  private:
   Edge period_index(sim::Time t) const { return mclk_.last_at_or_before(t); }
-  // A list walk touches many words in one instant: its MCLK period is worked out once.
-  Edge current_period() {
-    const sim::Time now = scheduler_.now();
-    if (now != cached_now_) {
-      cached_now_ = now;
-      cached_period_ = period_index(now);
-    }
-    return cached_period_;
-  }
   void release();
   [[noreturn]] static void beyond_the_ram();
 
   sim::Scheduler& scheduler_;
   MclkGrid mclk_;
   std::function<void(bool)> drive_busyn_;
-  // Per RAM word: the MCLK period in which the telegram processor last used it (-1:
-  // never). O(1) per access: a list walk reads thousands of words at one instant.
-  std::vector<std::int64_t> last_used_;
-  sim::Time cached_now_ = -1;  // internal_access: the instant cached_period_ belongs to
-  Edge cached_period_ = -1;
+  // Per RAM word: when the telegram processor last used it (-1: never). The time, not
+  // its MCLK period: the period is worked out only for the rare µP access that asks
+  // (same period iff same period index), so an internal access is one store.
+  std::vector<sim::Time> last_used_;
   bool busy_ = false;
   sim::Scheduler::EventId release_event_{};
 };
