@@ -34,8 +34,10 @@ constexpr unsigned state_index(bool in_frame, RxState s) {
 
 // Table entry for (state, 8 decoded bits MSB first):
 //   bits 0..7   the bits delivered to the frame, first at bit 0
-//   bits 8..11  how many
-//   bits 12..16 state index afterwards (after the event, if any)
+//   bits 8..12  state index afterwards (after the event, if any): masked, it is already
+//               the next entry's row offset (state * 256), which keeps the loop's chain
+//               from one lookup to the next short
+//   bits 13..16 how many bits were delivered
 //   bits 17..18 event: 0 none, 1 flag, 2 abort; bits 19..21 the window bit it happened at
 //   bit 22      zero_emitted at a flag (was the 0 before its six 1s frame data?)
 constexpr std::uint32_t kFlagEvent = 1;
@@ -66,7 +68,7 @@ constexpr std::uint32_t make_entry(unsigned state, unsigned window) {
     }
     at = i;
   }
-  return out | count << 8 | state_index(in_frame, s) << 12 | event << 17 | at << 19 |
+  return out | state_index(in_frame, s) << 8 | count << 13 | event << 17 | at << 19 |
          flag_zero << 22;
 }
 
@@ -158,16 +160,16 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
   };
 
   // The hot loop keeps the state in locals; events write it back for the handlers.
-  unsigned state = state_index(in_frame_, {run_, zero_emitted_});
+  unsigned row = state_index(in_frame_, {run_, zero_emitted_}) << 8;  // state * 256
   std::uint64_t acc = acc_;
   unsigned acc_bits = acc_bits_;
   unsigned cur = 0;
   while (cur + 8 <= total) {
-    const unsigned state_before = state;
-    const std::uint32_t e = kTable[state * 256 + static_cast<unsigned>(bits_at(cur) >> 56)];
+    const unsigned row_before = row;
+    const std::uint32_t e = kTable[row + static_cast<unsigned>(bits_at(cur) >> 56)];
     acc |= static_cast<std::uint64_t>(e & 0xFFu) << acc_bits;
-    acc_bits += (e >> 8) & 0xFu;
-    state = (e >> 12) & 0x1Fu;
+    acc_bits += (e >> 13) & 0xFu;
+    row = e & 0x1F00u;
     if (acc_bits >= 32) {
       acc_ = acc;
       acc_bits_ = acc_bits;
@@ -183,7 +185,7 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
     const unsigned at = (e >> 19) & 7u;
     acc_ = acc;
     acc_bits_ = acc_bits;
-    in_frame_ = state_before >= kFrameStates;  // the mode the event happened in
+    in_frame_ = row_before >= kFrameStates << 8;  // the mode the event happened in
     if (event == kFlagEvent) {
       on_flag(base + cur + at, ((e >> 22) & 1u) != 0);
     } else {
@@ -193,6 +195,7 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
     acc_bits = acc_bits_;
     cur += at + 1;
   }
+  const unsigned state = row >> 8;
   in_frame_ = state >= kFrameStates;
   run_ = in_frame_ ? (state - kFrameStates) & 7u : state;
   zero_emitted_ = in_frame_ && (state - kFrameStates) >= 8;
