@@ -146,7 +146,9 @@ void TelegramList::fire_transmit() {
   } catch (const ListFault& f) {
     fault(f);
   }
-  client_.list_moved();
+  // offer() answered NotExpected while the transmit item was armed; only a receive
+  // header now waiting can change that.
+  if (state_ == State::Receive) client_.list_moved();
 }
 
 void TelegramList::close_window() {
@@ -161,11 +163,11 @@ void TelegramList::close_window() {
   client_.list_moved();
 }
 
+// No list_moved(): offer() answers NotExpected before (end marker armed) and after.
 void TelegramList::fire_end() {
   event_ = 0;
   state_ = State::Idle;
   client_.end_reached(item_);
-  client_.list_moved();
 }
 
 TelegramList::Match TelegramList::would_take(sim::Time start, std::uint8_t address) const {

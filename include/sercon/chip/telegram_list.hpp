@@ -47,8 +47,8 @@ class ListClient {
   virtual void list_fault(const ListFault& fault) = 0;
   // Longest time from a telegram's opening flag to its start report (address in).
   virtual sim::Time start_report_delay() const = 0;
-  // The walk moved on by itself (an item's time came, a window closed): what offer()
-  // would answer may have changed.
+  // The walk moved on by itself (an item's time came, a window closed) and what offer()
+  // would answer may have changed: a receive header waited before or waits now.
   virtual void list_moved() = 0;
 };
 
