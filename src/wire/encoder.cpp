@@ -47,43 +47,74 @@ constexpr std::uint64_t kIdlePattern = 0x7F7F7F7F7F7F7F7Full;  // `0 1111111`, M
 
 std::uint64_t top_mask(unsigned n) { return n == 0 ? 0 : kOnes << (64 - n); }
 
+// Decoded bits on their way to NRZI. The hot paths keep them in a local so they stay in
+// registers: the encoder's members would go to memory around every byte read (a uint8_t
+// may alias them), and handing them between functions through memory measured slower.
+struct Decoded {
+  std::uint64_t bits = 0;  // MSB first
+  unsigned count = 0;      // < 64 between calls
+  unsigned run = 0;        // consecutive 1s for the stuffing rule
+};
+
+// Appends the `n` (0..64) low bits of msb_first, first bit highest; a full word goes to
+// `full` (NRZI onto the line).
+template <class Full>
+[[gnu::always_inline]] inline void put(Decoded& d, std::uint64_t msb_first, unsigned n,
+                                       const Full& full) {
+  const unsigned room = 64 - d.count;
+  if (n < room) {
+    d.bits |= msb_first << (room - n);
+    d.count += n;
+    return;
+  }
+  const unsigned rest = n - room;  // bits that do not fit in this word
+  full(d.bits | msb_first >> rest);
+  d.bits = rest == 0 ? 0 : msb_first << (64 - rest);
+  d.count = rest;
+}
+
+// Inlined, so that `d` stays a caller's local (see Decoded).
+template <class Full>
+[[gnu::always_inline]] inline void stuff_into(Decoded& d, std::span<const std::uint8_t> bytes,
+                                              const Full& full) {
+  for (std::uint8_t b : bytes) {
+    const std::uint32_t e = kStuff[d.run * 256 + b];
+    put(d, e & 0x3FFu, (e >> 10) & 0xFu, full);
+    d.run = e >> 14;
+  }
+}
+
 }  // namespace
 
 LineEncoder::LineEncoder(bool initial_level_high) : level_(initial_level_high) {}
 
 void LineEncoder::put_decoded(std::uint64_t msb_first, unsigned count) {
-  const unsigned room = 64 - pending_count_;
-  if (count < room) {
-    pending_ |= msb_first << (room - count);
-    pending_count_ += count;
-    return;
-  }
-  const unsigned rest = count - room;  // bits that do not fit in this word
-  pending_ |= msb_first >> rest;
-  pending_count_ = 64;
-  flush();
-  if (rest != 0) {
-    pending_ = msb_first << (64 - rest);
-    pending_count_ = rest;
-  }
+  Decoded d{pending_, pending_count_, ones_run_};
+  put(d, msb_first, count, [this](std::uint64_t w) { put_levels(w, 64); });
+  pending_ = d.bits;
+  pending_count_ = d.count;
 }
 
 void LineEncoder::flush() {
   if (pending_count_ == 0) return;
+  put_levels(pending_, pending_count_);
+  pending_ = 0;
+  pending_count_ = 0;
+}
+
+void LineEncoder::put_levels(std::uint64_t decoded, unsigned count) {
   // NRZI (sercos-facts §1): a 0 is a level change. Prefix XOR from the MSB turns the
   // changes into "odd number of changes so far", i.e. the level relative to level_.
-  std::uint64_t x = ~pending_ & top_mask(pending_count_);
+  std::uint64_t x = ~decoded & top_mask(count);
   x ^= x >> 1;
   x ^= x >> 2;
   x ^= x >> 4;
   x ^= x >> 8;
   x ^= x >> 16;
   x ^= x >> 32;
-  const std::uint64_t levels = (level_ ? ~x : x) & top_mask(pending_count_);
-  bits_.append(levels, pending_count_);
-  level_ = ((levels >> (64 - pending_count_)) & 1u) != 0;
-  pending_ = 0;
-  pending_count_ = 0;
+  const std::uint64_t levels = (level_ ? ~x : x) & top_mask(count);
+  bits_.append(levels, count);
+  level_ = ((levels >> (64 - count)) & 1u) != 0;
 }
 
 void LineEncoder::idle(std::size_t bit_count) {
@@ -106,13 +137,11 @@ void LineEncoder::flag() {
 }
 
 void LineEncoder::stuff(std::span<const std::uint8_t> bytes) {
-  unsigned run = ones_run_;
-  for (std::uint8_t b : bytes) {
-    const std::uint32_t e = kStuff[run * 256 + b];
-    put_decoded(e & 0x3FFu, (e >> 10) & 0xFu);
-    run = e >> 14;
-  }
-  ones_run_ = run;
+  Decoded d{pending_, pending_count_, ones_run_};
+  stuff_into(d, bytes, [this](std::uint64_t w) { put_levels(w, 64); });
+  pending_ = d.bits;
+  pending_count_ = d.count;
+  ones_run_ = d.run;
 }
 
 void LineEncoder::stuffed_bytes(std::span<const std::uint8_t> bytes) {
@@ -125,8 +154,6 @@ EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::ui
   // The chip codes one telegram per encoder: one allocation for all of it (flags, pending
   // bits, and at most 10 bits per stuffed byte) rather than growing it by doubling.
   if (start == 0) bits_.reserve(pending_count_ + 16 + 10 * (data.size() + 3));
-  put_decoded(0x7E, 8);
-  ones_run_ = 0;
   Fcs16 fcs;
   fcs.update(address);
   fcs.update(data);
@@ -134,13 +161,18 @@ EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::ui
   const std::uint8_t head[1] = {address};
   const std::uint8_t tail[2] = {static_cast<std::uint8_t>(v & 0xFFu),
                                 static_cast<std::uint8_t>(v >> 8)};  // low byte first
-  stuff(head);
-  stuff(data);
-  stuff(tail);
-  put_decoded(0x7E, 8);
+  const auto full = [this](std::uint64_t w) { put_levels(w, 64); };
+  Decoded d{pending_, pending_count_, 0};
+  put(d, 0x7E, 8, full);  // flag; the stuffing count starts after it
+  stuff_into(d, head, full);
+  stuff_into(d, data, full);
+  stuff_into(d, tail, full);
+  put(d, 0x7E, 8, full);
+  if (d.count != 0) put_levels(d.bits, d.count);
+  pending_ = 0;
+  pending_count_ = 0;
   ones_run_ = 0;
   idle_phase_ = 0;
-  flush();
   return {start, size()};
 }
 

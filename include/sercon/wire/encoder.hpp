@@ -60,6 +60,7 @@ class LineEncoder {
  private:
   void put_decoded(std::uint64_t msb_first, unsigned count);  // NRZI onto the line
   void flush();
+  void put_levels(std::uint64_t decoded_msb_first, unsigned count);  // NRZI, 1..64 bits
   void stuff(std::span<const std::uint8_t> bytes);
 
   LineBits bits_;
