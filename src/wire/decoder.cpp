@@ -163,6 +163,8 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
   unsigned row = state_index(in_frame_, {run_, zero_emitted_}) << 8;  // state * 256
   std::uint64_t acc = acc_;
   unsigned acc_bits = acc_bits_;
+  std::uint8_t* bytes = bytes_.data();
+  std::size_t nbytes = nbytes_;
   unsigned cur = 0;
   while (cur + 8 <= total) {
     const unsigned row_before = row;
@@ -170,12 +172,16 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
     acc |= static_cast<std::uint64_t>(e & 0xFFu) << acc_bits;
     acc_bits += (e >> 13) & 0xFu;
     row = e & 0x1F00u;
-    if (acc_bits >= 32) {
-      acc_ = acc;
-      acc_bits_ = acc_bits;
-      store_acc();
-      acc = acc_;
-      acc_bits = acc_bits_;
+    if (acc_bits >= 32) {  // store_acc() on the locals
+      const auto low = static_cast<std::uint32_t>(acc);
+      std::memcpy(bytes + nbytes, &low, 4);
+      nbytes += 4;
+      acc >>= 32;
+      acc_bits -= 32;
+      if (nbytes + 8 > bytes_.size()) {
+        bytes_.resize(bytes_.size() * 2);
+        bytes = bytes_.data();
+      }
     }
     const std::uint32_t event = (e >> 17) & 3u;
     if (event == 0) {
@@ -185,6 +191,7 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
     const unsigned at = (e >> 19) & 7u;
     acc_ = acc;
     acc_bits_ = acc_bits;
+    nbytes_ = nbytes;
     in_frame_ = row_before >= kFrameStates << 8;  // the mode the event happened in
     if (event == kFlagEvent) {
       on_flag(base + cur + at, ((e >> 22) & 1u) != 0);
@@ -193,6 +200,8 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
     }
     acc = acc_;
     acc_bits = acc_bits_;
+    nbytes = nbytes_;
+    bytes = bytes_.data();
     cur += at + 1;
   }
   const unsigned state = row >> 8;
@@ -201,6 +210,7 @@ void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
   zero_emitted_ = in_frame_ && (state - kFrameStates) >= 8;
   acc_ = acc;
   acc_bits_ = acc_bits;
+  nbytes_ = nbytes;
   pending_count_ = total - cur;
   pending_ = bits_at(cur) & top_mask(pending_count_);
   pos_ += count;
