@@ -319,7 +319,14 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
     const wire::DecodedFrame& f = e.decode->frames[i];
     const bool wanted = telegram ? interest_->wants_telegram(st.start, f)
                                  : interest_->wants_start(st.start, f.address);
-    if (!wanted) return false;  // if its time passes meanwhile, it is dropped then
+    if (!wanted) {
+      // Dropped for good once its time has passed (not asked again at every plan).
+      if (st.end < now) {
+        const FrameState& r = with_reports(e, i);
+        if ((telegram ? r.telegram_report : r.start_report) < now) done = true;
+      }
+      return false;
+    }
   }
   with_reports(e, i);
   const sim::Time t = telegram ? st.telegram_report : st.start_report;
