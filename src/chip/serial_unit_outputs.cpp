@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
@@ -34,15 +35,18 @@ void TxdOutputs::pass_on(LineListener& listener, const RxdSegment& s) {
 }
 
 // A listener that joins (or whose pin goes back to the line) gets the line now, then what
-// is announced for later.
+// is announced for later. Taken out first: in a ring where every node repeats, what the
+// listener is told comes back round to this line and changes it during the telling.
 void TxdOutputs::tell_line(LineListener& listener) const {
   sim::Time period = 0;
   const LineCondition c = line_condition_now(&period);
   const sim::Time now = unit_.chip().scheduler().now();
-  listener.line_condition(now, c, period);
+  std::vector<RxdSegment> later;
   for (const RxdSegment& s : line_) {
-    if (s.since > now) pass_on(listener, s);
+    if (s.since > now) later.push_back(s);
   }
+  listener.line_condition(now, c, period);
+  for (const RxdSegment& s : later) pass_on(listener, s);
 }
 
 void TxdOutputs::connect(unsigned pin, LineListener& listener) {

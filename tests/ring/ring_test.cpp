@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ring_bench.hpp"
+#include "sercon/chip/register_map.hpp"
 
 namespace sercon::ring {
 namespace {
@@ -124,6 +125,42 @@ TEST(Ring, ASlaveInsertsItsTelegramInItsSlot) {
   const Time to_slave3 = at_start + ring.fibre(2).delay();
   EXPECT_EQ(heard[3]->heard[1].start, to_slave3);
   EXPECT_EQ(heard[0]->heard[1].start, repeated(to_slave3, t) + ring.fibre(3).delay());
+}
+
+// Datasheet Table 1 (TxD1: serial output with high impedance, TXOE) and delta spec 2.3.3
+// (repeater): a TxD that is switched back on passes on what the line already announced
+// (docs/serial-and-ring.md, "Announcements"). In a ring where every node repeats, that
+// comes back round to the same TxD while it is being passed on (found by review: a
+// use-after-free under ASan when the line's timeline grew during the telling).
+TEST(Ring, TxdSwitchedBackOnPassesOnWhatIsAnnouncedWhenEveryNodeRepeats) {
+  sim::Scheduler s;
+  RingOptions o;
+  o.fibre_lengths_m = {1000.0, 1000.0};  // a lap (10 µs) longer than the telegrams
+  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 1, o);
+  ring.switch_on_lines();
+  chip::Chip& m = ring.master();
+  const std::uint16_t repon = chip::find_field("REPON", m.variant())->mask();
+  const std::uint16_t txoe = chip::find_field("TXOE", m.variant())->mask();
+  m.reg_write(0x01, static_cast<std::uint16_t>(m.reg_read(0x01) | repon));
+  const std::uint16_t ctrl = m.reg_read(0x02);
+  m.reg_write(0x02, static_cast<std::uint16_t>(ctrl & ~txoe));  // the ring open at the master
+  auto heard = ears(ring);
+  const Time t = bit_period_of(16);
+  s.run_until(1000 * t);
+  const std::vector<std::uint8_t> data = {0x55, 0x55};
+  const chip::LineBurst first{s.now() + t, t, testing::telegram_bits(0x07, data)};
+  const chip::LineBurst second{first.end() + 16 * t, t, testing::telegram_bits(0x08, data)};
+  ring.serial(0).rxd().line_burst(first);  // into the master, repeated to its TxD
+  ring.serial(0).rxd().line_burst(second);
+  m.reg_write(0x02, ctrl);  // TXOE on before the first leaves: both go out
+  s.run_until(s.now() + 300 * t);  // both in at the slave, before their first lap returns
+  const std::vector<testing::Heard>& at_slave = heard[1]->heard;
+  ASSERT_GE(at_slave.size(), 2u);
+  EXPECT_EQ(at_slave[0].frame.address, 0x07);
+  EXPECT_TRUE(at_slave[0].frame.ok());
+  EXPECT_EQ(at_slave[0].start, repeated(first.start, t) + ring.fibre(0).delay());
+  EXPECT_EQ(at_slave[1].frame.address, 0x08);
+  EXPECT_EQ(at_slave[1].start, repeated(second.start, t) + ring.fibre(0).delay());
 }
 
 // Decision (own telegram wins): a slave that sends while a telegram passes cuts it; the
