@@ -152,7 +152,7 @@ TEST(Ring, TxdSwitchedBackOnPassesOnWhatIsAnnouncedWhenEveryNodeRepeats) {
   const chip::LineBurst second{first.end() + 16 * t, t, testing::telegram_bits(0x08, data)};
   ring.serial(0).rxd().line_burst(first);  // into the master, repeated to its TxD
   ring.serial(0).rxd().line_burst(second);
-  m.reg_write(0x02, ctrl);  // TXOE on before the first leaves: both go out
+  m.reg_write(0x02, ctrl);         // TXOE on before the first leaves: both go out
   s.run_until(s.now() + 300 * t);  // both in at the slave, before their first lap returns
   const std::vector<testing::Heard>& at_slave = heard[1]->heard;
   ASSERT_GE(at_slave.size(), 2u);
