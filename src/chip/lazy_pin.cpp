@@ -5,17 +5,15 @@
 namespace sercon::chip {
 
 LazyPin::LazyPin(Chip& chip, Pin pin, const Source& source)
-    : chip_(chip), pin_(pin), source_(source) {
-  sim::Signal& signal = chip.pin(pin);
-  signal.provide(&LazyPin::provide, this);
-  signal.on_watch([this] { plan(true); });
+    : chip_(chip), pin_(pin), signal_(chip.pin(pin)), source_(source) {
+  signal_.provide(&LazyPin::provide, this);
+  signal_.on_watch([this] { plan(true); });
 }
 
 LazyPin::~LazyPin() {
   chip_.scheduler().cancel(event_);
-  sim::Signal& signal = chip_.pin(pin_);
-  signal.provide(nullptr, nullptr);
-  signal.on_watch(nullptr);
+  signal_.provide(nullptr, nullptr);
+  signal_.on_watch(nullptr);
 }
 
 // Datasheet Table 1: OUTZ = 1 puts every output into high impedance.
@@ -26,7 +24,7 @@ sim::Level LazyPin::provide(const void* self) {
 }
 
 void LazyPin::replan() {
-  if (event_.value == 0 && !chip_.pin(pin_).watched()) return;  // the usual case: unwatched
+  if (event_.value == 0 && !signal_.watched()) return;  // the usual case: unwatched
   plan(false);
 }
 
@@ -36,7 +34,7 @@ void LazyPin::plan(bool watcher_coming) {
   sim::Scheduler& s = chip_.scheduler();
   s.cancel(event_);
   event_ = {};
-  if (!watcher_coming && !chip_.pin(pin_).watched()) return;
+  if (!watcher_coming && !signal_.watched()) return;
   const sim::Time now = s.now();
   chip_.set_output(pin_, source_.level_at(now));
   const sim::Time next = source_.next_change_after(now);

@@ -13,19 +13,15 @@ void Signal::set(Level level) {
 
 std::size_t Signal::watch(Watcher watcher) {
   if (on_watch_) on_watch_();
+  if (watcher) ++watching_;
   watchers_.push_back(std::move(watcher));
   return watchers_.size() - 1;
 }
 
 void Signal::unwatch(std::size_t handle) {
-  if (handle < watchers_.size()) watchers_[handle] = nullptr;
-}
-
-bool Signal::watched() const {
-  for (const Watcher& w : watchers_) {
-    if (w) return true;
-  }
-  return false;
+  if (handle >= watchers_.size() || !watchers_[handle]) return;
+  watchers_[handle] = nullptr;
+  --watching_;
 }
 
 void Signal::provide(Provider provider, const void* context) {

@@ -28,5 +28,23 @@ TEST(Signal, UnwatchedWatchersAreSilent) {
   EXPECT_EQ(calls, 1);
 }
 
+// A unit computing a pin on demand (LazyPin) schedules its edges only while the pin is
+// watched: watched() must follow every watch and unwatch, a second unwatch included.
+TEST(Signal, WatchedWhileAnyWatcherIsLeft) {
+  Signal pin("RECACTN");
+  EXPECT_FALSE(pin.watched());
+  const auto a = pin.watch([](Level) {});
+  const auto b = pin.watch([](Level) {});
+  EXPECT_TRUE(pin.watched());
+  pin.unwatch(a);
+  EXPECT_TRUE(pin.watched());
+  pin.unwatch(a);  // again: no effect
+  EXPECT_TRUE(pin.watched());
+  pin.unwatch(b);
+  EXPECT_FALSE(pin.watched());
+  pin.unwatch(99);  // no such handle: no effect
+  EXPECT_FALSE(pin.watched());
+}
+
 }  // namespace
 }  // namespace sercon::sim

@@ -43,6 +43,7 @@ class LazyPin {
 
   Chip& chip_;
   Pin pin_;
+  sim::Signal& signal_;  // chip_.pin(pin_)
   const Source& source_;
   sim::Scheduler::EventId event_{};
 };

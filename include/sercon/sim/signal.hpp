@@ -41,7 +41,8 @@ class Signal {
   // hear the model bringing the level up to date).
   std::size_t watch(Watcher watcher);
   void unwatch(std::size_t handle);
-  bool watched() const;
+  // Inline and without touching the watchers: asked at every telegram that passes a chip.
+  bool watched() const { return watching_ != 0; }
 
   // level() asks `provider(context)` from now on; nullptr goes back to the stored level.
   void provide(Provider provider, const void* context);
@@ -51,6 +52,7 @@ class Signal {
   std::string name_;
   Level level_;
   std::vector<Watcher> watchers_;  // unwatched slots hold an empty function
+  std::size_t watching_ = 0;       // non-empty slots
   Provider provider_ = nullptr;
   const void* provider_context_ = nullptr;
   std::function<void()> on_watch_;
