@@ -36,7 +36,6 @@ class SharedBits {
  public:
   SharedBits() = default;
   SharedBits(std::nullptr_t) {}  // NOLINT: a null handle reads like a null pointer
-  static SharedBits make(wire::LineBits bits) { return SharedBits(new Node(std::move(bits))); }
 
   SharedBits(const SharedBits& other) noexcept : node_(other.node_) {
     if (node_) ++node_->count;
@@ -61,10 +60,7 @@ class SharedBits {
   const wire::LineBits* operator->() const { return &node_->bits; }
   explicit operator bool() const { return node_ != nullptr; }
   friend bool operator==(const SharedBits& a, const SharedBits& b) { return a.node_ == b.node_; }
-  friend bool operator==(const SharedBits& a, std::nullptr_t) { return a.node_ == nullptr; }
 
-  // Handles to these bits alive now.
-  std::size_t use_count() const { return node_ ? node_->count : 0; }
   // The decodes of these bits (precondition: not null). A cache: filling it does not change
   // the bits, so it may be filled through a const handle.
   BurstDecodes& decodes() const { return node_->decodes; }
@@ -77,11 +73,14 @@ class SharedBits {
     BurstDecodes decodes;
   };
   explicit SharedBits(Node* node) : node_(node) {}
+  friend SharedBits share_bits(wire::LineBits bits);
 
   Node* node_ = nullptr;
 };
 
-// Shorthand for SharedBits::make.
-inline SharedBits share_bits(wire::LineBits bits) { return SharedBits::make(std::move(bits)); }
+// The one way to make bits to share: a new object, counted from one.
+inline SharedBits share_bits(wire::LineBits bits) {
+  return SharedBits(new SharedBits::Node(std::move(bits)));
+}
 
 }  // namespace sercon::chip
