@@ -315,21 +315,22 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
   // Cheap refusals first: both reports come after the frame's start (so not in the past
   // when it is at or after `before`), and most frames pass a chip that wants neither.
   if (st.start >= before) return false;
+  const auto report_time = [&] {
+    const FrameState& r = with_reports(e, i);
+    return telegram ? r.telegram_report : r.start_report;
+  };
   if (interest_ != nullptr) {
     const wire::DecodedFrame& f = e.decode->frames[i];
     const bool wanted = telegram ? interest_->wants_telegram(st.start, f)
                                  : interest_->wants_start(st.start, f.address);
     if (!wanted) {
-      // Dropped for good once its time has passed (not asked again at every plan).
-      if (st.end < now) {
-        const FrameState& r = with_reports(e, i);
-        if ((telegram ? r.telegram_report : r.start_report) < now) done = true;
-      }
+      // Dropped for good once its time has passed, so later plans do not ask again (the
+      // time is only worked out for a frame already over).
+      if (st.end < now && report_time() < now) done = true;
       return false;
     }
   }
-  with_reports(e, i);
-  const sim::Time t = telegram ? st.telegram_report : st.start_report;
+  const sim::Time t = report_time();
   if (t < now || t == kNever) {
     done = true;
     return false;
