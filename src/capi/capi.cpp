@@ -12,6 +12,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/pins.hpp"
 #include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/scoped_count.hpp"
 
 struct sercon_chip {
   sercon_sim* sim = nullptr;
@@ -84,13 +85,6 @@ namespace {
 // Pin callbacks run inside the scheduler's event loop: freeing the chip or the sim, or
 // letting time pass, from there would pull the ground from under the running event.
 thread_local int callback_depth = 0;
-
-struct InsideCallback {
-  InsideCallback() { ++callback_depth; }
-  ~InsideCallback() { --callback_depth; }
-  InsideCallback(const InsideCallback&) = delete;
-  InsideCallback& operator=(const InsideCallback&) = delete;
-};
 
 bool refused_in_callback(const char* what) {
   if (callback_depth == 0) return false;
@@ -276,7 +270,7 @@ int sercon_on_pin_change(sercon_chip* chip, int pin, sercon_pin_callback callbac
   return guarded(what, [&] {
     sercon::sim::Scheduler& scheduler = chip->sim->scheduler;
     chip->chip->pin(static_cast<Pin>(pin)).watch([&scheduler, callback, user, pin](auto level) {
-      const InsideCallback inside;
+      const sercon::sim::ScopedCount inside(callback_depth);
       callback(user, static_cast<sercon_pin>(pin), static_cast<sercon_level>(level),
                scheduler.now());
     });

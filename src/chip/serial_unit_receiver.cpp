@@ -8,6 +8,7 @@
 #include "sercon/chip/serial_unit_fields.hpp"
 #include "sercon/chip/serial_unit_monitor.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
+#include "sercon/sim/scoped_count.hpp"
 
 namespace sercon::chip {
 
@@ -16,14 +17,7 @@ constexpr sim::Time kNever = LazyPin::kNever;
 // Longest chain of receivers one announcement may run through at once: more than a ring of
 // 255 nodes needs, far less than the stack allows.
 constexpr int kMaxChain = 600;
-thread_local int chain_depth = 0;
-// One more receiver in the chain for as long as it lives (exceptions included).
-struct ChainLink {
-  ChainLink() { ++chain_depth; }
-  ~ChainLink() { --chain_depth; }
-  ChainLink(const ChainLink&) = delete;
-  ChainLink& operator=(const ChainLink&) = delete;
-};
+thread_local int chain_depth = 0;  // receivers in the chain now
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
@@ -117,7 +111,7 @@ void SerialReceiver::pass_to_repeater(const Entry& e) {
                              e.segment.since, [this, serial] { forward_deferred(serial); })});
     return;
   }
-  const ChainLink link;
+  const sim::ScopedCount link(chain_depth);
   unit_.repeater().input(e.segment);
 }
 
@@ -130,7 +124,7 @@ void SerialReceiver::forward_deferred(std::uint64_t serial) {
     if (e.serial >= serial) segments.push_back(e.segment);
   }
   if (segments.empty()) return;  // superseded meanwhile
-  const ChainLink link;
+  const sim::ScopedCount link(chain_depth);
   for (const RxdSegment& s : segments) unit_.repeater().input(s);
 }
 
