@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "chip_fixture.hpp"
+#include "register_words.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/settled_line.hpp"
@@ -15,11 +16,12 @@
 
 namespace sercon::chip::testing {
 
-inline constexpr std::uint8_t kSerMode = 0x01;
-inline constexpr std::uint8_t kSerCtrl = 0x02;
-inline constexpr std::uint8_t kIntStat = 0x04;
-inline constexpr std::uint8_t kTxPort = 0x0B;
-inline constexpr std::uint8_t kLineMon = 0x0D;
+// Word addresses: the tests' one table (register_words.hpp).
+using register_words::kIntStat;
+using register_words::kLineMon;
+using register_words::kSerCtrl;
+using register_words::kSerMode;
+using register_words::kTxPort;
 
 // 0x01
 inline constexpr std::uint16_t kRepon = 1u << 3;
