@@ -213,10 +213,13 @@ void SerialReceiver::prune() {
   while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
     Entry& e = timeline_.front();
     if (e.serial == report_.serial && report_event_.value != 0) return;
-    // The last frame's detection (after its end) still to come?
-    if (!e.frames.empty() && (e.frames.back().end >= now ||
-                              with_reports(e, e.frames.size() - 1).telegram_report >= now)) {
-      return;
+    // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
+    // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
+    if (!e.frames.empty()) {
+      const FrameState& last = e.frames.back();
+      if (last.end >= now) return;
+      const bool surely_over = !last.reports_known && last.end + report_lag(e) < now;
+      if (!surely_over && with_reports(e, e.frames.size() - 1).telegram_report >= now) return;
     }
     timeline_.erase(timeline_.begin());
   }
@@ -287,6 +290,10 @@ void SerialReceiver::refresh_rate() {
 
 // --- reports to the telegram processor ---------------------------------------------------
 
+sim::Time SerialReceiver::report_lag(const Entry& e) const {
+  return (11 * e.segment.period + 1) / 2 + 4 * unit_.chip().mclk_period();
+}
+
 sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
   const sim::Time half_bits = (11 * period + 1) / 2;  // 5.5 bit times
   // Three MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
@@ -338,7 +345,8 @@ void SerialReceiver::plan_reports() {
   Report best{kNever, 0, 0, false};
   if (unit_.running() && (on_start_ || on_telegram_)) {
     for (Entry& e : timeline_) {
-      if (!e.decode || e.segment.since > best.when) continue;
+      if (e.segment.since > best.when) break;  // in time order: the rest start later still
+      if (!e.decode) continue;
       for (std::size_t i = 0; i < e.frames.size(); ++i) {
         if (candidate(e, i, false, now, best.when)) {
           best = Report{e.frames[i].start_report, e.serial, i, false};

@@ -117,6 +117,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void work_out(Entry& e, std::size_t first);                   // frame times from frame `first` on
   FrameState& with_reports(Entry& e, std::size_t frame) const;  // report times worked out
   sim::Time pipeline(sim::Time t, sim::Time period) const;      // MCLK edge after t + 5.5 bit + 3
+  sim::Time report_lag(const Entry& e) const;  // bound on pipeline(t) - t for e's frames
   void plan_reports();
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
