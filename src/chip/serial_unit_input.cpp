@@ -37,19 +37,6 @@ sim::Time RxdSegment::burst_end() const {
   return since + static_cast<sim::Time>(bits ? bits->size() : 0) * period;
 }
 
-bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at) {
-  bool dropped = false;
-  while (!line.empty() && line.back().since >= at) {
-    line.pop_back();
-    dropped = true;
-  }
-  return dropped;
-}
-
-void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now) {
-  while (line.size() > 1 && line[1].since <= now) line.pop_front();
-}
-
 std::uint64_t edges_before(const RxdSegment& s, sim::Time t) {
   if (t <= s.since || !s.has_edges()) return 0;
   if (!s.is_burst) {

@@ -76,7 +76,7 @@ void Fibre::take(Change change) {
     history_.pop_back();
   }
   while (history_.size() > 1 && history_[1].burst.start <= now) history_.pop_front();
-  history_.push_back(change);
+  history_.push_back(std::move(change));
   if (!broken_) pass_on(history_.back());
 }
 

@@ -34,9 +34,19 @@ struct RxdSegment {
 
 // A line's announced segments in time order, the front in force now (repeater, TxD):
 // drops those announced for `at` or later (the later word wins, line.hpp); true if any.
-bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at);
+// Inline: at every hop, and usually nothing to drop.
+inline bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at) {
+  bool dropped = false;
+  while (!line.empty() && line.back().since >= at) {
+    line.pop_back();
+    dropped = true;
+  }
+  return dropped;
+}
 // Drops the segments a later one has replaced by `now`; the one in force stays.
-void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now);
+inline void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now) {
+  while (line.size() > 1 && line[1].since <= now) line.pop_front();
+}
 
 // Edges in [since, t): Idle has one every 8 bit times, ZeroBits one every bit time, both
 // beginning with an edge at `since`; a burst has its bits' edges, then its trailing fill.
