@@ -23,8 +23,10 @@ sim::Level LazyPin::provide(const void* self) {
   return sim::level_of(pin.source_.level_at(pin.chip_.scheduler().now()));
 }
 
+bool LazyPin::idle() const { return event_.value == 0 && !signal_.watched(); }
+
 void LazyPin::replan() {
-  if (event_.value == 0 && !signal_.watched()) return;  // the usual case: unwatched
+  if (idle()) return;  // the usual case: unwatched
   plan(false);
 }
 

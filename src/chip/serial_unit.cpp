@@ -31,6 +31,7 @@ SerialUnit::SerialUnit(Chip& chip)
 SerialUnit::~SerialUnit() = default;
 
 void SerialUnit::reset(ResetCause) {
+  receiver_->absorb_lazy();  // at the rate and settings they were passed on with
   running_ = false;
   bit_period_ = 0;
   transmitter_->reset();
@@ -70,6 +71,7 @@ void SerialUnit::on_register_change(std::uint8_t address) {
   if (!running_) return;
   const RegisterFile& regs = chip_.regs();
   if (address == fields_.repon.address) {
+    receiver_->absorb_lazy();  // at the rate and settings they were passed on with
     const sim::Time period = compute_bit_period();
     const bool repon = fields_.repon.on(regs);
     const bool poltxd = fields_.poltxd.on(regs);
@@ -127,6 +129,10 @@ void SerialUnit::set_interest(const ReceiveInterest* interest) {
 }
 
 void SerialUnit::interest_changed() { receiver_->interest_changed(); }
+
+void SerialUnit::set_lazy_hops(bool on) { receiver_->set_lazy_hops(on); }
+
+std::uint64_t SerialUnit::lazy_hops_taken() const { return receiver_->lazy_hops_taken(); }
 
 sim::Time SerialUnit::repeated_at(sim::Time arrival) const {
   return repeater_->forward_time(arrival);

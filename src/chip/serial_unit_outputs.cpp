@@ -7,6 +7,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
 
 namespace sercon::chip {
 namespace {
@@ -50,6 +51,7 @@ void TxdOutputs::tell_line(LineListener& listener) const {
 }
 
 void TxdOutputs::connect(unsigned pin, LineListener& listener) {
+  unit_.receiver().absorb_lazy();
   Output& out = outputs_[index_of_pin(pin)];
   out.listener = &listener;
   const View& v = out.view;
@@ -60,7 +62,10 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
   }
 }
 
-void TxdOutputs::disconnect(unsigned pin) { outputs_[index_of_pin(pin)].listener = nullptr; }
+void TxdOutputs::disconnect(unsigned pin) {
+  unit_.receiver().absorb_lazy();
+  outputs_[index_of_pin(pin)].listener = nullptr;
+}
 
 const RxdSegment& TxdOutputs::line_now() const {
   const sim::Time now = unit_.chip().scheduler().now();
@@ -70,6 +75,7 @@ const RxdSegment& TxdOutputs::line_now() const {
 }
 
 LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
+  unit_.receiver().absorb_lazy();
   const RxdSegment& s = line_now();
   *period = s.period;
   return s.is_burst ? LineCondition::Idle : s.condition;
@@ -105,6 +111,29 @@ void TxdOutputs::line_burst(const LineBurst& burst) {
   if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
+bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
+  LineListener* only = nullptr;
+  for (const Output& o : outputs_) {
+    if (o.view.mode != Mode::Line || o.listener == nullptr) continue;
+    if (only != nullptr) return false;  // two listeners follow the line
+    only = o.listener;
+  }
+  // Nothing announced at or after it to drop, and no change between dark and light (the
+  // pins' plan stays as it is): what line_burst() would do is only to keep it.
+  if (only == nullptr || line_.back().since >= burst.start || is_dark(line_.back())) return false;
+  return only->pass_through(burst, next, out);
+}
+
+void TxdOutputs::absorb(const LineBurst& burst) {
+  if (line_.back().since >= burst.start) {  // as in the receiver
+    throw std::logic_error("TxD: a lazy burst at " + std::to_string(burst.start) +
+                           " ps is absorbed after a change at " +
+                           std::to_string(line_.back().since) + " ps");
+  }
+  prune();
+  line_.push_back(RxdSegment::of(burst));
+}
+
 // The pins change only where the line goes dark or lights up; an announcement that does
 // neither (and drops nothing announced before) leaves the plan as it is.
 bool TxdOutputs::darkness_changes_at_back() const {
@@ -125,6 +154,7 @@ void TxdOutputs::plan_pins() {
     if (is_dark(line_[i]) == is_dark(line_[i - 1])) continue;
     pins_event_ = s.at(line_[i].since, [this] {
       pins_event_ = {};
+      unit_.receiver().absorb_lazy();
       prune();
       plan_pins();
     });
@@ -198,6 +228,7 @@ void TxdOutputs::show(unsigned pin, const View& v) {
 }
 
 void TxdOutputs::refresh() {
+  unit_.receiver().absorb_lazy();
   for (unsigned pin = 1; pin <= SerialUnit::kTxdCount; ++pin) show(pin, view_of(pin));
 }
 

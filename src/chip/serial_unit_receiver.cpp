@@ -60,6 +60,7 @@ void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::
     throw std::invalid_argument("RxD: " + std::string(to_string(condition)) + " with bit period " +
                                 std::to_string(bit_period) + " ps");
   }
+  absorb_lazy();
   announce(RxdSegment::of(at, condition, toggles ? bit_period : 0));
 }
 
@@ -69,7 +70,89 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     throw std::invalid_argument("RxD: a burst with bit period " + std::to_string(burst.bit_period) +
                                 " ps");
   }
+  if (try_lazy_hop(burst)) return;
+  absorb_lazy();
   announce(RxdSegment::of(burst));
+}
+
+// --- lazy hops ------------------------------------------------------------------------------
+
+void SerialReceiver::set_lazy_hops(bool on) {
+  if (!on) absorb_lazy();
+  lazy_hops_ = on;
+}
+
+bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
+  if (!lazy_hops_ || chain_depth >= kMaxChain || !unit_.running()) return false;
+  const sim::Time now = unit_.chip().scheduler().now();
+  if (b.bit_period != unit_.bit_period() || b.start <= now || !recactn_.idle()) return false;
+  // After everything announced before (nothing superseded or cut) and between good signals
+  // (the line monitor hears nothing): announce() would only keep it.
+  SerialRepeater& repeater = unit_.repeater();
+  const sim::Time leaves = repeater.forward_time(b.start);
+  if (!lazy_.empty()) {
+    const LazyBurst& last = lazy_.back();
+    if (last.burst.end() > b.start || last.leaves >= leaves) return false;
+  } else {
+    const Entry& last = timeline_.back();
+    if (last.segment.since >= b.start || !good(last.segment)) return false;
+    if (last.segment.is_burst && b.start < last.cut) return false;
+  }
+  if (wants_a_report(b)) return false;
+  LineListener* next = nullptr;
+  LineBurst out;
+  if (!repeater.pass_through(b, leaves, next, out)) return false;
+  lazy_.push_back(LazyBurst{b, leaves});
+  ++lazy_hops_taken_;
+  prune_lazy(now);
+  const sim::ScopedCount link(chain_depth);
+  next->line_burst(out);
+  return true;
+}
+
+// What consider() would plan for the burst's frames in the telegram processor's present
+// state (a frame without a whole address counts as wanted: the full path sorts it out).
+bool SerialReceiver::wants_a_report(const LineBurst& b) const {
+  if (!on_start_ && !on_telegram_) return false;
+  if (interest_ == nullptr) return true;
+  for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+    const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
+    if (on_start_ && interest_->wants_start(start, f.address)) return true;
+    if (on_telegram_ && interest_->wants_telegram(start, f)) return true;
+  }
+  return false;
+}
+
+// Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
+// RxD too) and this one's reports would be past. The full path would have dropped them.
+void SerialReceiver::prune_lazy(sim::Time now) {
+  while (lazy_.size() > 1 && lazy_[1].leaves <= now) {
+    const LineBurst& front = lazy_.front().burst;
+    if (front.end() + report_lag(front.bit_period) >= now) return;
+    lazy_.pop_front();
+  }
+}
+
+void SerialReceiver::absorb_lazy() {
+  if (lazy_.empty()) return;
+  // Nothing here calls out of the node, so lazy_ stays as it is while it is walked.
+  for (const LazyBurst& lazy : lazy_) {
+    const LineBurst& b = lazy.burst;
+    // Every other way into the timeline absorbs first: a later entry here is a bug.
+    if (timeline_.back().segment.since >= b.start) {
+      throw std::logic_error("RxD: a lazy burst at " + std::to_string(b.start) +
+                             " ps is absorbed after a change at " +
+                             std::to_string(timeline_.back().segment.since) + " ps");
+    }
+    prune();
+    Entry& e = timeline_.emplace_back();
+    e.cut = b.end();
+    e.serial = next_serial_++;
+    e.segment = RxdSegment::of(b);
+    take(e);
+    unit_.repeater().absorb(b, lazy.leaves);
+  }
+  lazy_.clear();
 }
 
 void SerialReceiver::announce(RxdSegment segment) {
@@ -119,6 +202,7 @@ void SerialReceiver::pass_to_repeater(const Entry& e) {
 // it went straight on, and must not be overtaken by this late one).
 void SerialReceiver::forward_deferred(std::uint64_t serial) {
   if (!unit_.running()) return;
+  absorb_lazy();
   std::vector<RxdSegment> segments;
   for (const Entry& e : timeline_) {
     if (e.serial >= serial) segments.push_back(e.segment);
@@ -218,7 +302,7 @@ void SerialReceiver::prune() {
     if (!e.frames.empty()) {
       const FrameState& last = e.frames.back();
       if (last.end >= now) return;
-      const bool surely_over = !last.reports_known && last.end + report_lag(e) < now;
+      const bool surely_over = !last.reports_known && last.end + report_lag(e.segment.period) < now;
       if (!surely_over && with_reports(e, e.frames.size() - 1).telegram_report >= now) return;
     }
     timeline_.erase(timeline_.begin());
@@ -239,10 +323,12 @@ SerialReceiver::Entry* SerialReceiver::find(std::uint64_t serial) {
 }
 
 const RxdSegment& SerialReceiver::input() const {
+  absorb_lazy_to_read();
   return timeline_[in_force(unit_.chip().scheduler().now())].segment;
 }
 
 std::vector<RxdSegment> SerialReceiver::input_from_now() const {
+  absorb_lazy_to_read();
   std::vector<RxdSegment> out;
   for (std::size_t i = in_force(unit_.chip().scheduler().now()); i < timeline_.size(); ++i) {
     out.push_back(timeline_[i].segment);
@@ -251,6 +337,7 @@ std::vector<RxdSegment> SerialReceiver::input_from_now() const {
 }
 
 void SerialReceiver::reset() {
+  absorb_lazy();
   sim::Scheduler& s = unit_.chip().scheduler();
   s.cancel(report_event_);
   s.cancel(monitor_event_);
@@ -268,6 +355,7 @@ void SerialReceiver::reset() {
 // Out of reset: the segment in force was not received (no opening flag seen); what is
 // announced for later is taken as if announced now.
 void SerialReceiver::release() {
+  absorb_lazy();
   const sim::Time now = unit_.chip().scheduler().now();
   const std::size_t current = in_force(now);
   monitor_seen_ = timeline_[current].serial;
@@ -280,6 +368,7 @@ void SerialReceiver::release() {
 }
 
 void SerialReceiver::refresh_rate() {
+  absorb_lazy();
   if (!unit_.running()) return;
   const sim::Time now = unit_.chip().scheduler().now();
   for (std::size_t i = in_force(now) + 1; i < timeline_.size(); ++i) take(timeline_[i]);
@@ -290,8 +379,8 @@ void SerialReceiver::refresh_rate() {
 
 // --- reports to the telegram processor ---------------------------------------------------
 
-sim::Time SerialReceiver::report_lag(const Entry& e) const {
-  return (11 * e.segment.period + 1) / 2 + 4 * unit_.chip().mclk_period();
+sim::Time SerialReceiver::report_lag(sim::Time period) const {
+  return (11 * period + 1) / 2 + 4 * unit_.chip().mclk_period();
 }
 
 sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
@@ -340,6 +429,7 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
 }
 
 void SerialReceiver::plan_reports() {
+  absorb_lazy();
   sim::Scheduler& s = unit_.chip().scheduler();
   const sim::Time now = s.now();
   Report best{kNever, 0, 0, false};
@@ -419,6 +509,7 @@ bool SerialReceiver::good(const RxdSegment& s) const {
 // The monitor hears a change only when it leaves or enters a bad signal: between good
 // signals (edges at the receiver's rate) its status cannot change.
 void SerialReceiver::plan_monitor() {
+  absorb_lazy();
   sim::Scheduler& s = unit_.chip().scheduler();
   s.cancel(monitor_event_);
   monitor_event_ = {};
@@ -457,6 +548,7 @@ void SerialReceiver::fire_monitor() {
 // Low from the first frame's opening flag to the end of the last frame (or the cut). A
 // telegram cut by the next one keeps it low across the seam.
 bool SerialReceiver::recact_at(sim::Time t) const {
+  absorb_lazy_to_read();
   if (!unit_.running()) return false;
   const Entry& e = timeline_[in_force(t)];
   if (!e.decode || e.frames.empty()) return false;
@@ -464,6 +556,7 @@ bool SerialReceiver::recact_at(sim::Time t) const {
 }
 
 sim::Time SerialReceiver::next_change_after(sim::Time t) const {
+  absorb_lazy_to_read();
   const bool level = recact_at(t);
   std::vector<sim::Time> candidates;
   for (std::size_t i = in_force(t); i < timeline_.size(); ++i) {

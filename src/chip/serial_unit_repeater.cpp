@@ -1,6 +1,8 @@
 #include "sercon/chip/serial_unit_repeater.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
@@ -14,6 +16,7 @@ SerialRepeater::SerialRepeater(SerialUnit& unit)
     : unit_(unit), sclk_period_(sim::period_of_hz(unit.chip().config().sclk_hz)) {}
 
 void SerialRepeater::reset() {
+  unit_.receiver().absorb_lazy();
   repon_ = false;
   background_.clear();
   own_.clear();
@@ -21,6 +24,7 @@ void SerialRepeater::reset() {
 }
 
 void SerialRepeater::release() {
+  unit_.receiver().absorb_lazy();
   repon_ = unit_.fields().repon.on(unit_.chip().regs());
   const sim::Time now = unit_.chip().scheduler().now();
   background_.clear();
@@ -70,13 +74,36 @@ void SerialRepeater::input(const RxdSegment& segment) {
   emit_from(at);
 }
 
+bool SerialRepeater::pass_through(const LineBurst& burst, sim::Time leaves, LineListener*& next,
+                                  LineBurst& out) {
+  if (!repon_ || unit_.bit_period() == 0) return false;
+  prune();
+  if (!own_.empty() || background_.empty() || background_.back().since >= leaves) return false;
+  return unit_.outputs().pass_through(LineBurst{leaves, burst.bit_period, burst.bits}, next, out);
+}
+
+void SerialRepeater::absorb(const LineBurst& burst, sim::Time leaves) {
+  const sim::Time at = leaves;
+  if (!background_.empty() && background_.back().since >= at) {  // as in the receiver
+    throw std::logic_error("repeater: a lazy burst leaving at " + std::to_string(at) +
+                           " ps is absorbed after a change at " +
+                           std::to_string(background_.back().since) + " ps");
+  }
+  prune();
+  RxdSegment& s = background_.emplace_back(RxdSegment::of(burst));
+  s.since = at;
+  unit_.outputs().absorb(LineBurst{at, burst.bit_period, burst.bits});
+}
+
 void SerialRepeater::own(const LineBurst& burst) {
+  unit_.receiver().absorb_lazy();
   own_.push_back(burst);
   prune();
   emit_from(burst.start);
 }
 
 void SerialRepeater::refresh() {
+  unit_.receiver().absorb_lazy();
   const bool on = unit_.fields().repon.on(unit_.chip().regs());
   const sim::Time now = unit_.chip().scheduler().now();
   if (on != repon_) {

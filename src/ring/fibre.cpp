@@ -71,13 +71,34 @@ void Fibre::take(Change change) {
   }
   change.burst.start += delay_;
   if (change.is_burst && errors_.enabled()) change.burst.bits = errors_.apply(change.burst.bits);
-  // The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
+  record(std::move(change));
+  if (!broken_) pass_on(history_.back());
+}
+
+// The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
+void Fibre::record(Change change) {
+  const sim::Time now = scheduler_.now();
   while (!history_.empty() && history_.back().burst.start >= change.burst.start) {
     history_.pop_back();
   }
   while (history_.size() > 1 && history_[1].burst.start <= now) history_.pop_front();
   history_.push_back(std::move(change));
-  if (!broken_) pass_on(history_.back());
+}
+
+// A lazy hop (line.hpp): whole and without bit errors, the fibre passes a burst on as it
+// is, so the sender may deliver it to the far end itself.
+bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& next, LineBurst& out) {
+  Fibre& f = fibre_;
+  if (f.broken_ || f.errors_.enabled() || f.output_ == nullptr) return false;
+  if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
+  Change c;
+  c.is_burst = true;
+  c.burst = burst;
+  c.burst.start += f.delay_;
+  f.record(std::move(c));
+  next = f.output_;
+  out = f.history_.back().burst;
+  return true;
 }
 
 void Fibre::pass_on(const Change& c) {

@@ -35,6 +35,8 @@ class LazyPin {
   // What the unit will do from now on changed (a telegram announced, superseded, reset):
   // while the pin is watched, bring it up to date and schedule its next change.
   void replan();
+  // Nobody watches the pin and no change is planned: replan() would do nothing.
+  bool idle() const;
 
  private:
   static sim::Level provide(const void* self);

@@ -71,6 +71,16 @@ class LineListener {
   // A telegram begins on the line at burst.start >= now; the line returns to Idle at
   // burst.end() unless another change is announced before that.
   virtual void line_burst(const LineBurst& burst) = 0;
+
+  // Lazy hops (docs/serial-and-ring.md, "Lazy hops"): a listener that passes a burst on
+  // unchanged to exactly one other listener (a whole fibre without bit errors) may take it
+  // as line_burst() would and, instead of telling that one, hand it back: `next` and the
+  // burst as it reaches `next`, for the caller to deliver. False (the default): nothing was
+  // taken, call line_burst().
+  virtual bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
+    (void)burst, (void)next, (void)out;
+    return false;
+  }
 };
 
 }  // namespace sercon::chip

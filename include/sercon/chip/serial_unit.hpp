@@ -101,6 +101,10 @@ class SerialUnit : public ChipUnit {
   // bit times later, rounded up to the SCLK grid.
   sim::Time repeated_at(sim::Time arrival) const;
   LineListener& rxd();  // fibres / buses deliver here
+  // Lazy hops (docs/serial-and-ring.md): on by default; off, every telegram takes the full
+  // path through this node. A speed option: the results are the same either way.
+  void set_lazy_hops(bool on);
+  std::uint64_t lazy_hops_taken() const;  // bursts passed on lazily so far
   // TxDn (n = 1..6) -> a fibre / bus input. The listener is told the present condition at
   // once. Replaces an earlier listener on that pin. std::out_of_range for other n.
   void connect_txd(unsigned pin, LineListener& listener);

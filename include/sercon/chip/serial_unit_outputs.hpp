@@ -35,6 +35,14 @@ class TxdOutputs {
   void line_condition(sim::Time at, LineCondition condition, sim::Time period);
   void line_burst(const LineBurst& burst);
 
+  // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
+  // burst is announced after everything before it, the listener may take it and hand it on
+  // (LineListener::pass_through); the line itself takes the burst later, by absorb(), and
+  // until then nothing else here may read it (the receiver's absorb_lazy() comes first).
+  bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out);
+  // A burst passed through before: into the line as line_burst() would, no listener told.
+  void absorb(const LineBurst& burst);
+
   // Registers, test mode, polarity, clocks or reset state changed: re-derive every pin and
   // tell the listeners whose view changed.
   void refresh();

@@ -26,6 +26,7 @@
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -48,6 +49,17 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void on_telegram(SerialUnit::TelegramHandler handler);
   void set_interest(const ReceiveInterest* interest);
   void interest_changed() { plan_reports(); }
+
+  // Lazy hops (docs/serial-and-ring.md, "Lazy hops"): a burst this chip does not look at
+  // (no report wanted, RECACTN unwatched, between good signals, after everything announced
+  // before) and that the repeater, TxD and the fibre behind would only pass on, goes
+  // straight to the next receiver; this node keeps just the burst. absorb_lazy() takes such
+  // bursts into the receiver, repeater and TxD timelines as the full path would have, and
+  // runs before anything reads or changes them. Off: every burst takes the full path (the
+  // results are the same; the tests compare both).
+  void set_lazy_hops(bool on);
+  void absorb_lazy();
+  std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
 
   // What RxD carries now.
   const RxdSegment& input() const;
@@ -105,6 +117,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   };
 
   void announce(RxdSegment segment);
+  bool try_lazy_hop(const LineBurst& burst);  // true: passed on lazily
+  bool wants_a_report(const LineBurst& burst) const;
+  void prune_lazy(sim::Time now);
+  // For the const readers of the timeline: the receiver itself is never const.
+  void absorb_lazy_to_read() const { const_cast<SerialReceiver*>(this)->absorb_lazy(); }
   void pass_to_repeater(const Entry& e);
   void forward_deferred(std::uint64_t serial);
   bool supersede(sim::Time at);  // true when something announced before was changed
@@ -117,7 +134,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void work_out(Entry& e, std::size_t first);                   // frame times from frame `first` on
   FrameState& with_reports(Entry& e, std::size_t frame) const;  // report times worked out
   sim::Time pipeline(sim::Time t, sim::Time period) const;      // MCLK edge after t + 5.5 bit + 3
-  sim::Time report_lag(const Entry& e) const;  // bound on pipeline(t) - t for e's frames
+  sim::Time report_lag(sim::Time period) const;                 // bound on pipeline(t, period) - t
   void plan_reports();
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
@@ -141,6 +158,15 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // and a deque of entries this size would allocate a block every second one.
   std::vector<Entry> timeline_;
   std::uint64_t next_serial_ = 1;
+  // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach RxD,
+  // and when they leave TxD.
+  struct LazyBurst {
+    LineBurst burst;
+    sim::Time leaves = 0;
+  };
+  sim::VectorQueue<LazyBurst> lazy_;
+  bool lazy_hops_ = true;
+  std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
   Report report_{};

@@ -31,6 +31,14 @@ class SerialRepeater {
   // REPON or the bit rate changed.
   void refresh();
 
+  // Lazy hops (docs/serial-and-ring.md): a burst that reaches RxD at burst.start, when it
+  // would go straight on (REPON on, nothing of its own in the way or announced after it),
+  // is handed to TxD's pass_through() at the time it leaves; absorb() takes it into the
+  // repeater's line (and TxD's) later, as input() would have, telling no one.
+  // `leaves` = forward_time(burst.start).
+  bool pass_through(const LineBurst& burst, sim::Time leaves, LineListener*& next, LineBurst& out);
+  void absorb(const LineBurst& burst, sim::Time leaves);
+
   // When something that reaches RxD at `t` leaves on TxD.
   sim::Time forward_time(sim::Time t) const;
   bool on() const { return repon_; }

@@ -57,6 +57,8 @@ class Fibre {
     explicit Input(Fibre& fibre) : fibre_(fibre) {}
     void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
     void line_burst(const chip::LineBurst& burst) override;
+    bool pass_through(const chip::LineBurst& burst, chip::LineListener*& next,
+                      chip::LineBurst& out) override;
 
    private:
     Fibre& fibre_;
@@ -69,7 +71,8 @@ class Fibre {
     chip::LineCondition condition = chip::LineCondition::Dark;
     chip::LineBurst burst;
   };
-  void take(Change change);  // from the input, time already moved by the delay
+  void take(Change change);    // from the input, time already moved by the delay
+  void record(Change change);  // into the history (the far end's time), the later word wins
   void pass_on(const Change& change);
   void tell_far_end();  // the far end's present condition, then what is still on its way
   sim::Scheduler& scheduler_;
