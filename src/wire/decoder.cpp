@@ -27,23 +27,26 @@ constexpr std::size_t kMinFrameBytes = 4;  // address + 1 data byte + 2 FCS byte
 // of 1s; 8 + (run | zero_emitted << 3) inside a frame (run 0..6).
 constexpr unsigned kFrameStates = 8;
 constexpr unsigned kStates = 24;
+constexpr unsigned kHuntSaturatedRow = kSaturated << 8;
 
 constexpr unsigned state_index(bool in_frame, RxState s) {
   return in_frame ? kFrameStates + (s.run | (s.zero_emitted ? 8u : 0u)) : s.run;
 }
 
-// Table entry for (state, 8 decoded bits MSB first):
+// Table entry for (state, decoded bits MSB first):
 //   bits 0..7   the bits delivered to the frame, first at bit 0
 //   bits 8..12  state index afterwards (after the event, if any): masked, it is already
 //               the next entry's row offset (state * 256), which keeps the loop's chain
 //               from one lookup to the next short
-//   bits 13..16 how many bits were delivered
-//   bits 17..18 event: 0 none, 1 flag, 2 abort; bits 19..21 the window bit it happened at
-//   bit 22      zero_emitted at a flag (was the 0 before its six 1s frame data?)
+//   bits 13..14 event: 0 none, 1 flag, 2 abort; bits 15..17 the window bit it happened at
+//   bit 18      zero_emitted at a flag (was the 0 before its six 1s frame data?)
+//   bits 28..31 how many bits were delivered (one shift to get it)
 constexpr std::uint32_t kFlagEvent = 1;
 constexpr std::uint32_t kAbortEvent = 2;
+constexpr std::uint32_t kEventMask = 3u << 13;
 
-constexpr std::uint32_t make_entry(unsigned state, unsigned window) {
+// The entry for the `width` (1..8) bits of `window` (its low bits), first bit highest.
+constexpr std::uint32_t make_entry(unsigned state, unsigned window, unsigned width) {
   bool in_frame = state >= kFrameStates;
   RxState s = in_frame ? RxState{(state - kFrameStates) & 7u, (state - kFrameStates) >= 8}
                        : RxState{state, false};
@@ -52,8 +55,8 @@ constexpr std::uint32_t make_entry(unsigned state, unsigned window) {
   std::uint32_t event = 0;
   std::uint32_t at = 0;
   std::uint32_t flag_zero = 0;
-  for (unsigned i = 0; i < 8 && event == 0; ++i) {
-    const unsigned bit = (window >> (7 - i)) & 1u;
+  for (unsigned i = 0; i < width && event == 0; ++i) {
+    const unsigned bit = (window >> (width - 1 - i)) & 1u;
     const Action a = in_frame ? detail::frame_step(s, bit) : detail::hunt_step(s, bit);
     if (a == Action::Emit0 || a == Action::Emit1) out |= (a == Action::Emit1 ? 1u : 0u) << count++;
     if (a == Action::Flag) {
@@ -68,19 +71,37 @@ constexpr std::uint32_t make_entry(unsigned state, unsigned window) {
     }
     at = i;
   }
-  return out | state_index(in_frame, s) << 8 | count << 13 | event << 17 | at << 19 |
-         flag_zero << 22;
+  return out | state_index(in_frame, s) << 8 | event << 13 | at << 15 | flag_zero << 18 |
+         count << 28;
 }
 
+constexpr bool valid_state(unsigned state) {
+  return state < kFrameStates || ((state - kFrameStates) & 7u) <= 6;
+}
+
+// Full windows: row state * 256, column the next 8 decoded bits.
 constexpr std::array<std::uint32_t, kStates * 256> make_table() {
   std::array<std::uint32_t, kStates * 256> t{};
   for (unsigned state = 0; state < kStates; ++state)
-    if (state < kFrameStates || ((state - kFrameStates) & 7u) <= 6)
-      for (unsigned w = 0; w < 256; ++w) t[state * 256 + w] = make_entry(state, w);
+    if (valid_state(state))
+      for (unsigned w = 0; w < 256; ++w) t[state * 256 + w] = make_entry(state, w, 8);
+  return t;
+}
+
+// The last k < 8 bits of a feed: column (1 << k) | the k bits, so one row holds every
+// width (k = 1..7 use columns 2..255).
+constexpr std::array<std::uint32_t, kStates * 256> make_tail_table() {
+  std::array<std::uint32_t, kStates * 256> t{};
+  for (unsigned state = 0; state < kStates; ++state)
+    if (valid_state(state))
+      for (unsigned k = 1; k < 8; ++k)
+        for (unsigned w = 0; w < (1u << k); ++w)
+          t[state * 256 + ((1u << k) | w)] = make_entry(state, w, k);
   return t;
 }
 
 constexpr std::array<std::uint32_t, kStates* 256> kTable = make_table();
+constexpr std::array<std::uint32_t, kStates* 256> kTailTable = make_tail_table();
 
 std::uint64_t load_be(const std::uint8_t* p) {
   std::uint64_t v;
@@ -110,155 +131,170 @@ std::string_view to_string(FrameError error) {
   return "unknown";
 }
 
-LineDecoder::LineDecoder(Sink sink) : sink_(std::move(sink)) {
+LineDecoder::LineDecoder(Sink sink) : sink_(std::move(sink)), row_(kHuntSaturatedRow) {
   if (!sink_) throw std::invalid_argument("LineDecoder: empty sink");
 }
 
+bool LineDecoder::in_frame() const { return row_ >= kFrameStates << 8; }
+
 void LineDecoder::feed(const LineBits& bits) {
-  const std::size_t n = bits.size();
-  for (std::size_t i = 0; i < n; i += 64)
-    feed_word(bits.word_at(i), n - i < 64 ? static_cast<unsigned>(n - i) : 64);
+  feed_levels([&bits](std::size_t i) { return bits.word_at(i); }, bits.size());
 }
 
 void LineDecoder::feed(std::span<const std::uint8_t> packed, std::size_t bit_count) {
-  if (bit_count / 8 > packed.size() || (bit_count / 8 == packed.size() && bit_count % 8 != 0))
+  const std::size_t size = packed.size();
+  if (bit_count / 8 > size || (bit_count / 8 == size && bit_count % 8 != 0))
     throw std::invalid_argument("LineDecoder::feed: " + std::to_string(bit_count) +
-                                " bits do not fit in " + std::to_string(packed.size()) + " bytes");
-  for (std::size_t i = 0; i < bit_count; i += 64) {
-    const std::size_t byte = i / 8;
-    std::uint64_t w = 0;
-    if (byte + 8 <= packed.size()) {
-      w = load_be(packed.data() + byte);
-    } else {
-      for (std::size_t k = byte; k < packed.size(); ++k)
-        w |= static_cast<std::uint64_t>(packed[k]) << (56 - 8 * (k - byte));
-    }
-    feed_word(w, bit_count - i < 64 ? static_cast<unsigned>(bit_count - i) : 64);
-  }
+                                " bits do not fit in " + std::to_string(size) + " bytes");
+  const std::uint8_t* p = packed.data();
+  feed_levels(
+      [p, size](std::size_t i) {
+        const std::size_t byte = i / 8;
+        if (byte + 8 <= size) return load_be(p + byte);
+        // The last bytes: the 8 that end the span, shifted up past the ones already fed.
+        if (size >= 8) return load_be(p + size - 8) << (8 * (byte + 8 - size));
+        std::uint64_t w = 0;
+        for (std::size_t k = byte; k < size; ++k)
+          w |= static_cast<std::uint64_t>(p[k]) << (56 - 8 * (k - byte));
+        return w;
+      },
+      bit_count);
 }
 
-void LineDecoder::feed_word(std::uint64_t levels, unsigned count) {
+// NRZI per 64 line bits, then the decoded bits through the tables 8 at a time from `w`
+// (decoded bits MSB first, `avail` of them), which the next word tops up.
+template <class WordAt>
+void LineDecoder::feed_levels(const WordAt& word_at, std::size_t bit_count) {
+  if (bit_count == 0) return;
   if (!have_level_) {  // decision: the level before bit 0 is bit 0's own level
-    last_level_ = (levels >> 63) != 0;
+    last_level_ = (word_at(0) >> 63) != 0;
     have_level_ = true;
   }
-  // NRZI (sercos-facts §1): decoded 1 = no level change from the previous bit.
-  const std::uint64_t before = (levels >> 1) | (static_cast<std::uint64_t>(last_level_) << 63);
-  const std::uint64_t decoded = ~(levels ^ before) & top_mask(count);
-  last_level_ = ((levels >> (64 - count)) & 1u) != 0;
-
-  // The stream to work on: pending bits, then this word; up to 71 bits in hi:lo.
-  const unsigned n = pending_count_;
-  const std::uint64_t hi = pending_ | (decoded >> n);
-  const std::uint64_t lo = n == 0 ? 0 : decoded << (64 - n);
-  const unsigned total = n + count;
-  const std::size_t base = pos_ - n;  // line position of hi's first bit
-  // 64 bits from stream bit cur (windows start at <= 63; the leftover may start at 64+).
-  auto bits_at = [hi, lo](unsigned cur) {
-    if (cur == 0) return hi;
-    return cur < 64 ? (hi << cur) | (lo >> (64 - cur)) : lo << (cur - 64);
-  };
-
   // The hot loop keeps the state in locals; events write it back for the handlers.
-  unsigned row = state_index(in_frame_, {run_, zero_emitted_}) << 8;  // state * 256
+  unsigned row = row_;  // state * 256
   std::uint64_t acc = acc_;
   unsigned acc_bits = acc_bits_;
-  std::uint8_t* bytes = bytes_.data();
+  std::uint8_t* bytes = frame_bytes();
   std::size_t nbytes = nbytes_;
-  unsigned cur = 0;
-  while (cur + 8 <= total) {
+  std::size_t room_end = frame_capacity() - 8;  // nbytes beyond this: grow
+  bool last_level = last_level_;
+  std::uint64_t w = 0;
+  unsigned avail = 0;
+  std::size_t in = pos_;  // one past the last line bit decoded
+  unsigned extra = 0;     // decoded bits in `lo` not yet moved into `w`
+
+  // Takes the entry for the window at the top of `w`; returns the bits it consumed.
+  const auto take = [&](std::uint32_t e, unsigned width) -> unsigned {
     const unsigned row_before = row;
-    const std::uint32_t e = kTable[row + static_cast<unsigned>(bits_at(cur) >> 56)];
     acc |= static_cast<std::uint64_t>(e & 0xFFu) << acc_bits;
-    acc_bits += (e >> 13) & 0xFu;
+    acc_bits += e >> 28;
     row = e & 0x1F00u;
-    if (acc_bits >= 32) {  // store_acc() on the locals
+    if (acc_bits >= 32) {
       const auto low = static_cast<std::uint32_t>(acc);
-      std::memcpy(bytes + nbytes, &low, 4);
+      std::memcpy(bytes + nbytes, &low, 4);  // little endian: first bits first
       nbytes += 4;
       acc >>= 32;
       acc_bits -= 32;
-      if (nbytes + 8 > bytes_.size()) {
-        bytes_.resize(bytes_.size() * 2);
-        bytes = bytes_.data();
+      if (nbytes > room_end) {
+        nbytes_ = nbytes;
+        grow_frame_bytes();
+        bytes = frame_bytes();
+        room_end = frame_capacity() - 8;
       }
     }
-    const std::uint32_t event = (e >> 17) & 3u;
-    if (event == 0) {
-      cur += 8;
-      continue;
-    }
-    const unsigned at = (e >> 19) & 7u;
+    if ((e & kEventMask) == 0) return width;
+    const unsigned at = (e >> 15) & 7u;
+    const std::size_t pos = in - extra - avail + at;
     acc_ = acc;
     acc_bits_ = acc_bits;
     nbytes_ = nbytes;
-    in_frame_ = row_before >= kFrameStates << 8;  // the mode the event happened in
-    if (event == kFlagEvent) {
-      on_flag(base + cur + at, ((e >> 22) & 1u) != 0);
+    if (((e >> 13) & 3u) == kFlagEvent) {
+      on_flag(pos, ((e >> 18) & 1u) != 0, row_before >= kFrameStates << 8);
     } else {
-      on_abort(base + cur + at);
+      on_abort(pos);
     }
     acc = acc_;
     acc_bits = acc_bits_;
     nbytes = nbytes_;
-    bytes = bytes_.data();
-    cur += at + 1;
+    bytes = frame_bytes();
+    room_end = frame_capacity() - 8;
+    return at + 1;
+  };
+  const auto full_windows = [&] {
+    while (avail >= 8) {
+      const unsigned used = take(kTable[row + static_cast<unsigned>(w >> 56)], 8);
+      w <<= used;
+      avail -= used;
+    }
+  };
+
+  for (std::size_t i = 0; i < bit_count; i += 64) {
+    const unsigned count = bit_count - i < 64 ? static_cast<unsigned>(bit_count - i) : 64;
+    const std::uint64_t levels = word_at(i);
+    // NRZI (sercos-facts §1): decoded 1 = no level change from the previous bit.
+    const std::uint64_t before = (levels >> 1) | (static_cast<std::uint64_t>(last_level) << 63);
+    const std::uint64_t decoded = ~(levels ^ before) & top_mask(count);
+    last_level = ((levels >> (64 - count)) & 1u) != 0;
+    in += count;
+    std::uint64_t lo = 0;
+    if (avail == 0) {
+      w = decoded;
+      avail = count;
+    } else {
+      w |= decoded >> avail;
+      if (avail + count > 64) {
+        lo = decoded << (64 - avail);
+        extra = avail + count - 64;
+        avail = 64;
+      } else {
+        avail += count;
+      }
+    }
+    full_windows();
+    if (extra != 0) {
+      w |= lo >> avail;
+      avail += extra;
+      extra = 0;
+      full_windows();
+    }
   }
-  const unsigned state = row >> 8;
-  in_frame_ = state >= kFrameStates;
-  run_ = in_frame_ ? (state - kFrameStates) & 7u : state;
-  zero_emitted_ = in_frame_ && (state - kFrameStates) >= 8;
+  while (avail > 0) {  // the last < 8 bits
+    const unsigned k = avail;
+    const unsigned used =
+        take(kTailTable[row + ((1u << k) | static_cast<unsigned>(w >> (64 - k)))], k);
+    w <<= used;
+    avail -= used;
+  }
+  row_ = row;
   acc_ = acc;
   acc_bits_ = acc_bits;
   nbytes_ = nbytes;
-  pending_count_ = total - cur;
-  pending_ = bits_at(cur) & top_mask(pending_count_);
-  pos_ += count;
+  last_level_ = last_level;
+  pos_ = in;
 }
 
-void LineDecoder::on_flag(std::size_t pos, bool zero_emitted) {
+void LineDecoder::grow_frame_bytes() {
+  if (heap_.empty()) {
+    heap_.assign(inline_.begin(), inline_.end());
+  }
+  heap_.resize(heap_.size() * 2);
+}
+
+void LineDecoder::on_flag(std::size_t pos, bool zero_emitted, bool was_in_frame) {
   // Flag 0 111111 0 ends at pos. Its leading 0 and the first five 1s went into the frame
   // as data (unless that 0 was itself a stuffed or flag 0): take them back.
-  if (in_frame_)
+  if (was_in_frame)
     close_frame(pos + 1, emitted_bits() - 5 - (zero_emitted ? 1 : 0), FrameError::None);
   open_frame(pos - 7);
-  run_ = 0;
-  zero_emitted_ = false;
 }
 
 void LineDecoder::on_abort(std::size_t pos) {
   // Seven 1s cannot occur in a frame (sercos-facts §1). The five 1s already taken as data
   // belong to the abort run.
   close_frame(pos + 1, emitted_bits() - 5, FrameError::Abort);
-  run_ = kSaturated;
-}
-
-void LineDecoder::tail_bits(std::uint64_t decoded_msb_first, unsigned count,
-                            std::size_t first_pos) {
-  for (unsigned i = 0; i < count; ++i) {
-    const unsigned bit = static_cast<unsigned>(decoded_msb_first >> (63 - i)) & 1u;
-    RxState s{run_, zero_emitted_};
-    const Action a = in_frame_ ? detail::frame_step(s, bit) : detail::hunt_step(s, bit);
-    run_ = s.run;
-    zero_emitted_ = s.zero_emitted;
-    if (a == Action::Emit0 || a == Action::Emit1) emit(a == Action::Emit1 ? 1u : 0u, 1);
-    if (a == Action::Flag) on_flag(first_pos + i, s.zero_emitted);
-    if (a == Action::Abort) on_abort(first_pos + i);
-  }
-}
-
-void LineDecoder::store_acc() {
-  std::uint32_t low = static_cast<std::uint32_t>(acc_);
-  std::memcpy(bytes_.data() + nbytes_, &low, 4);  // little endian: first bits first
-  static_assert(std::endian::native == std::endian::little);
-  nbytes_ += 4;
-  acc_ >>= 32;
-  acc_bits_ -= 32;
-  if (nbytes_ + 8 > bytes_.size()) bytes_.resize(bytes_.size() * 2);
 }
 
 void LineDecoder::open_frame(std::size_t start_bit) {
-  in_frame_ = true;
   frame_start_ = start_bit;
   nbytes_ = 0;
   acc_ = 0;
@@ -266,11 +302,11 @@ void LineDecoder::open_frame(std::size_t start_bit) {
 }
 
 void LineDecoder::close_frame(std::size_t end_bit, std::size_t frame_bits, FrameError forced) {
-  in_frame_ = false;
   if (frame_bits < 8) return;  // inter-frame fill, back-to-back flags: not a frame
   const std::size_t n = frame_bits / 8;
-  std::memcpy(bytes_.data() + nbytes_, &acc_, 8);  // the last partial word (room kept)
-  const std::uint8_t* b = bytes_.data();           // b[0, n): bits of the closing flag dropped
+  std::uint8_t* b = frame_bytes();     // b[0, n): bits of the closing flag dropped
+  std::memcpy(b + nbytes_, &acc_, 8);  // the last partial word (room kept)
+  static_assert(std::endian::native == std::endian::little);
   DecodedFrame& f = frame_;
   f.start_bit = frame_start_;
   f.end_bit = end_bit;
@@ -296,15 +332,10 @@ void LineDecoder::close_frame(std::size_t end_bit, std::size_t frame_bits, Frame
 }
 
 void LineDecoder::finish() {
-  tail_bits(pending_, pending_count_, pos_ - pending_count_);
-  if (in_frame_) close_frame(pos_, emitted_bits(), FrameError::Truncated);
+  if (in_frame()) close_frame(pos_, emitted_bits(), FrameError::Truncated);
   pos_ = 0;
   have_level_ = false;
-  pending_ = 0;
-  pending_count_ = 0;
-  run_ = kSaturated;
-  zero_emitted_ = false;
-  in_frame_ = false;
+  row_ = kHuntSaturatedRow;
   nbytes_ = 0;
   acc_ = 0;
   acc_bits_ = 0;

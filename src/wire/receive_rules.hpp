@@ -1,7 +1,7 @@
 // The receiver's rules, one decoded bit at a time (sercos-facts §1): a 0 after five 1s is
 // a stuffed 0, a 0 after six 1s ends a flag, a seventh 1 is an abort (or idle fill). The
-// decoder's tables are generated from these functions, and its last few bits at the end
-// of input run through them directly, so the rules exist once.
+// decoder's tables (8-bit windows, and the last 1..7 bits of a feed) are generated from
+// these functions, so the rules exist once.
 #pragma once
 
 #include <cstdint>

@@ -14,6 +14,7 @@
 // After any error the decoder hunts for the next flag.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -72,35 +73,33 @@ class LineDecoder {
   std::size_t position() const { return pos_; }
 
  private:
-  void feed_word(std::uint64_t levels, unsigned count);
-  void tail_bits(std::uint64_t decoded_msb_first, unsigned count, std::size_t first_pos);
-  void on_flag(std::size_t pos, bool zero_emitted);
+  // The decode proper; `word_at(i)` gives the 64 levels from bit i (i a multiple of 64).
+  template <class WordAt>
+  void feed_levels(const WordAt& word_at, std::size_t bit_count);
+  void on_flag(std::size_t pos, bool zero_emitted, bool was_in_frame);
   void on_abort(std::size_t pos);
-  void emit(std::uint32_t lsb_first_bits, unsigned count) {
-    acc_ |= static_cast<std::uint64_t>(lsb_first_bits) << acc_bits_;
-    acc_bits_ += count;
-    if (acc_bits_ >= 32) store_acc();
-  }
-  void store_acc();
   void close_frame(std::size_t end_bit, std::size_t frame_bits, FrameError forced);
   void open_frame(std::size_t start_bit);
   std::size_t emitted_bits() const { return nbytes_ * 8 + acc_bits_; }
+  bool in_frame() const;
+  // The open frame's bytes: a buffer inside the decoder, on the heap once a frame outgrows
+  // it (a decoder per burst then allocates nothing for its frames' bytes).
+  std::uint8_t* frame_bytes() { return heap_.empty() ? inline_.data() : heap_.data(); }
+  std::size_t frame_capacity() const { return heap_.empty() ? inline_.size() : heap_.size(); }
+  void grow_frame_bytes();
 
   Sink sink_;
   std::size_t pos_ = 0;      // line bits consumed
   bool have_level_ = false;  // false until the first bit fixes the reference level
   bool last_level_ = false;
-  // Decoded bits not yet through the tables (< 8), MSB first: a window needs 8 bits.
-  std::uint64_t pending_ = 0;
-  unsigned pending_count_ = 0;
-  // Destuffer state: run of 1s (7 = saturated: idle, abort, unknown start) and whether the
-  // 0 before the run was delivered to the frame as data.
-  unsigned run_ = 7;
-  bool zero_emitted_ = false;
-  // Open frame: bytes_[0, nbytes_) plus acc_bits_ bits in acc_ (first bit at bit 0).
-  bool in_frame_ = false;
+  // Hunting / destuffing state as the tables' row offset (state * 256, see decoder.cpp).
+  // Every bit fed is through the tables when feed() returns: nothing waits for more.
+  unsigned row_;
   std::size_t frame_start_ = 0;
-  std::vector<std::uint8_t> bytes_ = std::vector<std::uint8_t>(64);  // >= nbytes_ + 8
+  // Open frame: frame_bytes()[0, nbytes_) plus acc_bits_ bits in acc_ (first bit at bit 0);
+  // at least 8 bytes of room past nbytes_.
+  std::array<std::uint8_t, 128> inline_;  // not cleared: only bytes written are read
+  std::vector<std::uint8_t> heap_;
   std::size_t nbytes_ = 0;
   std::uint64_t acc_ = 0;
   unsigned acc_bits_ = 0;
