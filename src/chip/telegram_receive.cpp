@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstring>
 
 namespace sercon::chip {
 
@@ -33,10 +35,17 @@ void ReceivePath::take_words(const wire::DecodedFrame& frame) {
       frame.error == wire::FrameError::None || frame.error == wire::FrameError::BadFcs;
   const std::size_t bytes =
       whole ? frame.data.size() : frame.data.size() - std::min<std::size_t>(2, frame.data.size());
-  words_.resize(bytes / 2);
-  for (std::size_t i = 0; i < words_.size(); ++i) {
-    words_[i] = static_cast<std::uint16_t>(frame.data[2 * i] | frame.data[2 * i + 1] << 8);
-  }
+  arrived_bytes_ = frame.data.data();
+  arrived_words_ = bytes / 2;
+}
+
+// Words first .. last - 1 of those that arrived, little-endian on the line (facts §2),
+// valid until the next call.
+std::span<const std::uint16_t> ReceivePath::arrived(std::size_t first, std::size_t last) {
+  static_assert(std::endian::native == std::endian::little);
+  words_.resize(last - first);
+  if (last > first) std::memcpy(words_.data(), arrived_bytes_ + 2 * first, 2 * (last - first));
+  return words_;
 }
 
 ReceivePath::Outcome ReceivePath::finish(const ListItem& item, const wire::DecodedFrame& frame,
@@ -77,9 +86,9 @@ sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
     const std::uint16_t pos = head[1];
     const std::uint32_t data = control + telegram::kReceiveContainerWords;
     // The words of this container that arrived: POS .. POS + LEN of the telegram.
-    const std::size_t first = std::min<std::size_t>(pos, words_.size());
-    const std::size_t last = std::min<std::size_t>(std::size_t{pos} + c.len, words_.size());
-    const std::span<const std::uint16_t> arrived(words_.data() + first, last - first);
+    const std::size_t first = std::min<std::size_t>(pos, arrived_words_);
+    const std::size_t last = std::min<std::size_t>(std::size_t{pos} + c.len, arrived_words_);
+    const std::span<const std::uint16_t> arrived = this->arrived(first, last);
     std::uint32_t buffer = data;
     if (storage.dma) {
       dma_words_.insert(dma_words_.end(), arrived.begin(), arrived.end());

@@ -1,6 +1,7 @@
 #include "sercon/chip/telegram_transmit.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace sercon::chip {
 
@@ -10,11 +11,14 @@ void TransmitPath::clear_send_once(const ListItem& item, bool val) {
   ram_.write(item.address, word0);
 }
 
+// The words are laid out as they go on the line: little-endian words are the telegram's
+// bytes in order (facts §2), so the containers are read straight into place.
 std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool val,
                                                    ServiceChannelPort& port) {
+  static_assert(std::endian::native == std::endian::little);
   const telegram::Storage storage = telegram::storage_of(item.word0);
   const std::size_t total = item.length;
-  bytes_.assign(2 * total, 0);  // words the containers do not supply go out as 0
+  words_.assign(total, 0);  // words the containers do not supply go out as 0
   std::size_t filled = 0;
   std::uint32_t control = item.address + telegram::kTransmitHeaderWords;
   // A container takes at least one word: more containers than RAM words is a loop.
@@ -22,28 +26,35 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
     if (n >= ram_.size()) throw ListFault("transmit containers without LASTDC");
     const telegram::Container c = telegram::container_of(ram_.read(control));
     const std::uint32_t data = control + telegram::kTransmitContainerWords;
-    container_.resize(c.len);
+    // A container that reaches beyond TLEN goes through a scratch buffer, cut to fit.
+    const bool fits = filled + c.len <= total;
+    std::span<std::uint16_t> words;
+    if (fits) {
+      words = std::span<std::uint16_t>(words_.data() + filled, c.len);
+    } else {
+      container_.resize(c.len);
+      words = container_;
+    }
     if (storage.dma) {
-      dma_.transmit(container_);
+      dma_.transmit(words);
     } else {
       const std::uint32_t buffer = data + (storage.dbuf && val ? c.len : 0u);
-      ram_.read_run(buffer, container_);
+      ram_.read_run(buffer, words);
     }
     if (c.svfl) {
       const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
                                     static_cast<std::uint16_t>(storage.dma ? 0 : data)};
-      port.before_transmit(use, container_);
+      port.before_transmit(use, words);
     }
-    const std::size_t take = std::min<std::size_t>(c.len, total - std::min(filled, total));
-    for (std::size_t i = 0; i < take; ++i) {
-      bytes_[2 * (filled + i)] = static_cast<std::uint8_t>(container_[i] & 0xFF);
-      bytes_[2 * (filled + i) + 1] = static_cast<std::uint8_t>(container_[i] >> 8);
+    if (!fits) {
+      const std::size_t take = std::min<std::size_t>(c.len, total - std::min(filled, total));
+      std::copy_n(container_.begin(), take, words_.begin() + static_cast<std::ptrdiff_t>(filled));
     }
     filled += c.len;
     if (c.lastdc) break;
     control = data + storage.buffer_words(c.len);
   }
-  return bytes_;
+  return {reinterpret_cast<const std::uint8_t*>(words_.data()), 2 * total};
 }
 
 }  // namespace sercon::chip

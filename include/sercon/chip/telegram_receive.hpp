@@ -5,7 +5,9 @@
 // header whose telegram did not come gets RERR and NERR + 1.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "sercon/chip/dma_port.hpp"
@@ -37,11 +39,15 @@ class ReceivePath {
 
  private:
   void take_words(const wire::DecodedFrame& frame);
+  std::span<const std::uint16_t> arrived(std::size_t first, std::size_t last);
   sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
 
   TelegramRam& ram_;
   DmaPort& dma_;
-  std::vector<std::uint16_t> words_;  // the telegram's data words that arrived
+  // The telegram's data words that arrived (in the frame being finished), as bytes.
+  const std::uint8_t* arrived_bytes_ = nullptr;
+  std::size_t arrived_words_ = 0;
+  std::vector<std::uint16_t> words_;  // one container's words of them
   std::vector<std::uint16_t> dma_words_;
 };
 

@@ -31,8 +31,8 @@ class TransmitPath {
  private:
   TelegramRam& ram_;
   DmaPort& dma_;
-  std::vector<std::uint16_t> container_;  // one container's words; keeps its capacity
-  std::vector<std::uint8_t> bytes_;
+  std::vector<std::uint16_t> words_;      // the telegram's words, TLEN of them
+  std::vector<std::uint16_t> container_;  // a container cut at TLEN; keeps its capacity
 };
 
 }  // namespace sercon::chip
