@@ -40,6 +40,7 @@ constexpr unsigned state_index(bool in_frame, RxState s) {
 //               from one lookup to the next short
 //   bits 13..14 event: 0 none, 1 flag, 2 abort; bits 15..17 the window bit it happened at
 //   bit 18      zero_emitted at a flag (was the 0 before its six 1s frame data?)
+//   bit 19      a frame was open before the window (so at a flag: one closes)
 //   bits 28..31 how many bits were delivered (one shift to get it)
 constexpr std::uint32_t kFlagEvent = 1;
 constexpr std::uint32_t kAbortEvent = 2;
@@ -72,7 +73,7 @@ constexpr std::uint32_t make_entry(unsigned state, unsigned window, unsigned wid
     at = i;
   }
   return out | state_index(in_frame, s) << 8 | event << 13 | at << 15 | flag_zero << 18 |
-         count << 28;
+         (state >= kFrameStates ? 1u : 0u) << 19 | count << 28;
 }
 
 constexpr bool valid_state(unsigned state) {
@@ -183,9 +184,8 @@ void LineDecoder::feed_levels(const WordAt& word_at, std::size_t bit_count) {
   std::size_t in = pos_;  // one past the last line bit decoded
   unsigned extra = 0;     // decoded bits in `lo` not yet moved into `w`
 
-  // Takes the entry for the window at the top of `w`; returns the bits it consumed.
-  const auto take = [&](std::uint32_t e, unsigned width) -> unsigned {
-    const unsigned row_before = row;
+  // Takes the entry's bits and state.
+  const auto deliver = [&](std::uint32_t e) {
     acc |= static_cast<std::uint64_t>(e & 0xFFu) << acc_bits;
     acc_bits += e >> 28;
     row = e & 0x1F00u;
@@ -202,14 +202,16 @@ void LineDecoder::feed_levels(const WordAt& word_at, std::size_t bit_count) {
         room_end = frame_capacity() - 8;
       }
     }
-    if ((e & kEventMask) == 0) return width;
+  };
+  // The entry's flag or abort; returns the window bits consumed up to it.
+  const auto event = [&](std::uint32_t e) -> unsigned {
     const unsigned at = (e >> 15) & 7u;
     const std::size_t pos = in - extra - avail + at;
     acc_ = acc;
     acc_bits_ = acc_bits;
     nbytes_ = nbytes;
     if (((e >> 13) & 3u) == kFlagEvent) {
-      on_flag(pos, ((e >> 18) & 1u) != 0, row_before >= kFrameStates << 8);
+      on_flag(pos, ((e >> 18) & 1u) != 0, ((e >> 19) & 1u) != 0);
     } else {
       on_abort(pos);
     }
@@ -222,7 +224,11 @@ void LineDecoder::feed_levels(const WordAt& word_at, std::size_t bit_count) {
   };
   const auto full_windows = [&] {
     while (avail >= 8) {
-      const unsigned used = take(kTable[row + static_cast<unsigned>(w >> 56)], 8);
+      const std::uint32_t e = kTable[row + static_cast<unsigned>(w >> 56)];
+      deliver(e);
+      unsigned used = 8;
+      if ((e & kEventMask) != 0) [[unlikely]]
+        used = event(e);
       w <<= used;
       avail -= used;
     }
@@ -260,8 +266,9 @@ void LineDecoder::feed_levels(const WordAt& word_at, std::size_t bit_count) {
   }
   while (avail > 0) {  // the last < 8 bits
     const unsigned k = avail;
-    const unsigned used =
-        take(kTailTable[row + ((1u << k) | static_cast<unsigned>(w >> (64 - k)))], k);
+    const std::uint32_t e = kTailTable[row + ((1u << k) | static_cast<unsigned>(w >> (64 - k)))];
+    deliver(e);
+    const unsigned used = (e & kEventMask) != 0 ? event(e) : k;
     w <<= used;
     avail -= used;
   }
