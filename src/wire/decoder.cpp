@@ -147,6 +147,15 @@ void LineDecoder::feed(std::span<const std::uint8_t> packed, std::size_t bit_cou
   if (bit_count / 8 > size || (bit_count / 8 == size && bit_count % 8 != 0))
     throw std::invalid_argument("LineDecoder::feed: " + std::to_string(bit_count) +
                                 " bits do not fit in " + std::to_string(size) + " bytes");
+  if (bit_count == 1 && !have_level_) {
+    // A first bit alone (a receiver's lead-in): it only fixes the level reference. It
+    // decodes as 1 (decision 1), and a decoder without a level hunts with its run of 1s
+    // saturated, which a 1 leaves as it is.
+    last_level_ = (packed[0] & 0x80u) != 0;
+    have_level_ = true;
+    pos_ = 1;
+    return;
+  }
   const std::uint8_t* p = packed.data();
   feed_levels(
       [p, size](std::size_t i) {
