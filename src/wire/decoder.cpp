@@ -323,7 +323,19 @@ void LineDecoder::close_frame(std::size_t end_bit, std::size_t frame_bits, Frame
   std::uint8_t* b = frame_bytes();     // b[0, n): bits of the closing flag dropped
   std::memcpy(b + nbytes_, &acc_, 8);  // the last partial word (room kept)
   static_assert(std::endian::native == std::endian::little);
-  DecodedFrame& f = frame_;
+  // The report goes in a frame per thread, whose data keeps its capacity from decoder to
+  // decoder (one per burst in the chip model); a decoder run from inside a sink uses its own.
+  thread_local DecodedFrame shared;
+  thread_local bool shared_in_use = false;
+  const bool use_shared = !shared_in_use;
+  DecodedFrame& f = use_shared ? shared : frame_;
+  struct Release {
+    bool* flag;
+    ~Release() {
+      if (flag != nullptr) *flag = false;
+    }
+  } release{use_shared ? &shared_in_use : nullptr};
+  shared_in_use = true;
   f.start_bit = frame_start_;
   f.end_bit = end_bit;
   f.address = b[0];

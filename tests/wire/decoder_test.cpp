@@ -259,6 +259,33 @@ TEST(Decoder, SharedZeroFlags) {
   EXPECT_EQ(frames[1].start_bit + 1, frames[0].end_bit);
 }
 
+// decoder.hpp: the frame a sink gets stays valid for the whole call, even when the sink
+// runs another decoder meanwhile (only calling back into the same decoder is excluded).
+TEST(Decoder, FrameStaysValidWhileASinkDecodesAnotherLine) {
+  LineEncoder outer_enc(true);
+  outer_enc.idle(8);
+  outer_enc.telegram(0x05, Bytes{1, 2, 3, 4});
+  LineEncoder inner_enc(true);
+  inner_enc.idle(8);
+  inner_enc.telegram(0x06, Bytes{9, 8});
+  std::vector<DecodedFrame> outer;
+  std::vector<DecodedFrame> inner;
+  LineDecoder dec([&](const DecodedFrame& f) {
+    const DecodedFrame before = f;
+    inner = decode_all(inner_enc.bits());
+    expect_same({before}, {f});
+    outer.push_back(f);
+  });
+  dec.feed(outer_enc.bits());
+  dec.finish();
+  ASSERT_EQ(outer.size(), 1u);
+  EXPECT_EQ(outer[0].address, 0x05);
+  EXPECT_EQ(outer[0].data, (Bytes{1, 2, 3, 4}));
+  ASSERT_EQ(inner.size(), 1u);
+  EXPECT_EQ(inner[0].address, 0x06);
+  EXPECT_EQ(inner[0].data, (Bytes{9, 8}));
+}
+
 // A mixed stream with every error class, fed whole, in random LineBits chunks and as
 // random packed-byte chunks: identical frames at identical global positions.
 TEST(Decoder, ChunkedFeedingEqualsWholeFeeding) {

@@ -103,7 +103,7 @@ class LineDecoder {
   std::size_t nbytes_ = 0;
   std::uint64_t acc_ = 0;
   unsigned acc_bits_ = 0;
-  DecodedFrame frame_;  // reused for every report so its data keeps its capacity
+  DecodedFrame frame_;  // for reports while another decoder's sink runs (see close_frame)
 };
 
 std::vector<DecodedFrame> decode_all(const LineBits& bits);
