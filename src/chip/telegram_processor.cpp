@@ -90,8 +90,13 @@ void TelegramProcessor::on_cycle_start(const CycleStart& start) {
       list_fault(f);
     }
   }
+  // The answers to the receiver change only if a receive header waited before or waits
+  // now (ReceiveInterest: the list's answer is NotExpected otherwise, and nothing else
+  // they depend on changes here). A slave's list starts with its AT: most cycle starts
+  // change nothing.
+  const bool waited = list_.waits_for_telegram();
   list_.start(phase() <= 2 ? telegram::kCompt0 : telegram::kCompt1);
-  serial_.interest_changed();
+  if (waited || list_.waits_for_telegram()) serial_.interest_changed();
 }
 
 void TelegramProcessor::on_send_mst() {

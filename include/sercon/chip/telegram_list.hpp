@@ -79,6 +79,8 @@ class TelegramList {
   Match offer(sim::Time start, std::uint8_t address, ListItem& item);
   // What offer() would answer now, without taking the telegram.
   Match would_take(sim::Time start, std::uint8_t address) const;
+  // A receive header waits: only then can offer() answer anything but NotExpected.
+  bool waits_for_telegram() const { return state_ == State::Receive; }
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
   // it had not been offered (its window may have closed meanwhile: then it is missed).
   void reclaim(const ListItem& item);
