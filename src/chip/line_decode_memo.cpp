@@ -13,6 +13,8 @@ namespace {
 
 thread_local std::size_t decodes = 0;
 
+constexpr std::size_t kMinFrameBytes = 4;  // address + 1 data byte + 2 FCS bytes (decoder.hpp)
+
 // Feeds the lead-in level, then `count` bits of `bits`, then `dark_tail` bits without
 // edges, and collects the frames with positions counted from the burst's first bit.
 std::unique_ptr<const BurstDecode> run_decoder(const wire::LineBits& bits, std::size_t count,
@@ -56,6 +58,36 @@ const BurstDecode& decode_burst_prefix(const SharedBits& bits, std::size_t cut_b
   }
   d.prefixes.emplace_back(cut_bit, run_decoder(*bits, std::min(cut_bit, bits->size()), 8));
   return *d.prefixes.back().second;
+}
+
+// What the decoder finds in a burst that is one telegram as wire::LineEncoder::telegram()
+// writes it, from the decoder's rules (wire/decoder.hpp): the opening flag opens a frame at
+// its first bit, the closing flag closes it one past its last bit (and opens another that
+// the burst's end leaves with no bits: no frame); the bits between are whole bytes,
+// destuffed back to address, data and FCS. Four bytes or more with the right FCS: ok.
+// Fewer (no data): TooShort, every byte after the address as data, both FCS fields 0.
+void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::uint8_t address,
+                 std::span<const std::uint8_t> data, std::uint16_t fcs) {
+  BurstDecodes& d = bits.decodes();
+  if (d.whole || where.start_bit != 0 || where.end_bit != bits->size()) return;
+  auto result = std::make_unique<BurstDecode>();
+  ++decodes;
+  result->frames.resize(1);
+  wire::DecodedFrame& f = result->frames.front();
+  f.start_bit = where.start_bit;
+  f.end_bit = where.end_bit;
+  f.address = address;
+  if (data.size() + 3 >= kMinFrameBytes) {
+    f.data.assign(data.begin(), data.end());
+    f.fcs_received = fcs;
+    f.fcs_computed = fcs;
+    f.error = wire::FrameError::None;
+  } else {
+    f.data = {static_cast<std::uint8_t>(fcs & 0xFFu), static_cast<std::uint8_t>(fcs >> 8)};
+    f.error = wire::FrameError::TooShort;
+  }
+  result->address_end.push_back(where.start_bit + address_end_bit(address));
+  d.whole = std::move(result);
 }
 
 std::size_t burst_decode_count() { return decodes; }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sercon/chip/chip.hpp"
+#include "sercon/chip/line_decode_memo.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
 #include "sercon/wire/encoder.hpp"
@@ -48,9 +49,11 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   const sim::Time fill_bits = (begin_at - free_at_) / period;
   if (((fill_bits + 7) / 8) % 2 != 0) level_ = !level_;
   wire::LineEncoder encoder(level_);
-  encoder.telegram(address, data);
+  const wire::EncodedFrame where = encoder.telegram(address, data);
   level_ = encoder.level();
   auto bits = share_bits(encoder.take());
+  // The receivers' decode, known from what was encoded (docs/serial-and-ring.md, "Receiver").
+  seed_decode(bits, where, address, data, encoder.fcs());
   const LineBurst burst{begin_at, period, std::move(bits)};
   free_at_ = burst.end();
   while (!sent_.empty() && sent_.front().end() <= now) sent_.pop_front();

@@ -158,6 +158,7 @@ EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::ui
   fcs.update(address);
   fcs.update(data);
   const std::uint16_t v = fcs.value();
+  fcs_ = v;
   const std::uint8_t head[1] = {address};
   const std::uint8_t tail[2] = {static_cast<std::uint8_t>(v & 0xFFu),
                                 static_cast<std::uint8_t>(v >> 8)};  // low byte first

@@ -52,6 +52,8 @@ class LineEncoder {
   void raw_decoded_bits(std::uint64_t bits, unsigned count);
 
   bool level() const { return level_; }
+  // The FCS the last telegram() appended (0 before any).
+  std::uint16_t fcs() const { return fcs_; }
   const LineBits& bits() const { return bits_; }
   std::size_t size() const { return bits_.size(); }
   // Hands over the line written so far; the encoder continues from the same level.
@@ -69,6 +71,7 @@ class LineEncoder {
   unsigned pending_count_ = 0;
   unsigned ones_run_ = 0;    // consecutive 1s for the stuffing rule
   unsigned idle_phase_ = 0;  // position in the 8-bit idle pattern
+  std::uint16_t fcs_ = 0;    // of the last telegram()
 };
 
 // Fill, then each telegram followed by fill: idle_bits_between bits of fill between and
