@@ -110,8 +110,9 @@ class SerialUnit : public ChipUnit {
   void connect_txd(unsigned pin, LineListener& listener);
   void disconnect_txd(unsigned pin);
 
-  // Bursts the receiver decoded itself; a burst whose bits were already decoded (by this
-  // or any other chip) is served from the shared memo. For tests and benchmarks.
+  // Bursts decoded, one per bits object, counting those the transmitter seeded when it made
+  // them; a burst whose bits were already decoded (by this or any other chip) is served from
+  // the shared memo. For tests and benchmarks.
   static std::size_t decode_count();
 
   // The parts, for each other (src/chip/serial_unit_*.cpp).
