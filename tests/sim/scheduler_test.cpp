@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -86,6 +88,59 @@ TEST(Scheduler, NextTimeSkipsCancelledEventsAndRunsNothing) {
   EXPECT_EQ(s.next_time(), 9);
   EXPECT_EQ(s.now(), 0);
   EXPECT_EQ(s.pending_count(), 1u);
+}
+
+// docs/architecture.md, "Determinism": events run in time order, and events at the same
+// picosecond in the order they were scheduled, however many are pending and whatever was
+// cancelled or scheduled while others ran (the queue moves entries both ways and reuses
+// the room of those that ran).
+TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
+  Scheduler s;
+  struct Planned {
+    Time when;
+    int serial;
+  };
+  std::vector<Planned> planned;  // in scheduling order
+  std::vector<int> cancelled;
+  std::vector<Scheduler::EventId> ids;
+  std::vector<Planned> seen;
+  std::uint32_t random = 12345;
+  auto next_random = [&random](std::uint32_t range) {
+    random = random * 1103515245u + 12345u;
+    return (random >> 8) % range;
+  };
+  int serial = 0;
+  auto schedule = [&](Time when) {
+    const int mine = serial++;
+    planned.push_back({when, mine});
+    ids.push_back(s.at(when, [&s, &seen, mine] { seen.push_back({s.now(), mine}); }));
+  };
+  for (int round = 0; round < 200; ++round) {
+    const std::uint32_t count = next_random(12);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      schedule(s.now() + static_cast<Time>(next_random(40)));  // many share a time
+    }
+    if (!ids.empty() && next_random(3) == 0) {
+      const std::size_t victim = next_random(static_cast<std::uint32_t>(ids.size()));
+      if (s.cancel(ids[victim])) cancelled.push_back(planned[victim].serial);
+    }
+    s.run_until(s.now() + static_cast<Time>(next_random(15)));
+  }
+  s.run_until(s.now() + 100);
+  std::vector<Planned> expected;
+  for (const Planned& p : planned) {
+    if (std::find(cancelled.begin(), cancelled.end(), p.serial) == cancelled.end()) {
+      expected.push_back(p);
+    }
+  }
+  std::stable_sort(expected.begin(), expected.end(),
+                   [](const Planned& a, const Planned& b) { return a.when < b.when; });
+  ASSERT_EQ(seen.size(), expected.size());
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].when, expected[i].when) << "event " << i;
+    EXPECT_EQ(seen[i].serial, expected[i].serial) << "event " << i;
+  }
+  EXPECT_EQ(s.pending_count(), 0u);
 }
 
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {

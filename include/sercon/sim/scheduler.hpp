@@ -60,24 +60,34 @@ class Scheduler {
  private:
   // Events live in reusable slots (no allocation per event once the vectors have grown);
   // an EventId is the slot's index + 1 and its generation, so a stale id never matches a
-  // reused slot. The heap holds only {time, order, slot}: a cancelled event's heap entry
-  // is dropped when it comes to the top (its generation no longer matches).
+  // reused slot. The queue holds only {time, slot, generation}, sorted by time; an event
+  // goes in after every entry of its time, so same-time events keep their scheduling
+  // order without a sequence number. A cancelled event's entry is dropped when it comes
+  // to the front (its generation no longer matches).
   struct Slot {
     Action action = nullptr;  // null: `callback` holds the event
     void* context = nullptr;
     Callback callback;
     std::uint32_t generation = 1;
+    std::uint32_t next_free = 0;  // free list link: index + 1, 0 ends the list
     bool live = false;
   };
   struct Entry {
     Time when;
-    std::uint64_t order;  // the tie-breaker: lower was scheduled first
     std::uint32_t slot;
     std::uint32_t generation;
   };
 
   std::uint32_t take_slot(Time when);
-  void free_slot(std::uint32_t index);
+  std::uint32_t new_slot();
+  void free_slot(std::uint32_t index) {
+    Slot& slot = slots_[index];
+    slot.live = false;
+    ++slot.generation;  // stale ids and queue entries no longer match
+    slot.next_free = free_head_;
+    free_head_ = index + 1;
+    --live_count_;
+  }
   void release(std::uint32_t index);  // cancels a live slot
   const Slot* live_slot(EventId id) const {
     const std::uint64_t index = (id.value & 0xFFFF'FFFFu);
@@ -88,17 +98,28 @@ class Scheduler {
     }
     return &slot;
   }
-  bool top_is_live() const;
-  void drop_dead_tops();
-  void pop_top();
+  bool front_is_live() const {
+    const Entry& front = queue_[head_];
+    const Slot& slot = slots_[front.slot];
+    return slot.live && slot.generation == front.generation;
+  }
+  void drop_dead_fronts() {
+    while (!queue_empty() && !front_is_live()) ++head_;
+  }
+  bool queue_empty() const { return head_ == queue_.size(); }
+  void insert(const Entry& entry);
+  void make_room();
   bool run_next_due(Time until);
 
   Time now_ = 0;
-  std::uint64_t next_order_ = 0;
   std::size_t live_count_ = 0;
-  std::vector<Entry> heap_;  // binary min-heap on (when, order)
+  // Sorted by `when`, earliest at queue_[head_]; entries before head_ have run. With a
+  // couple of dozen pending events a sorted array beats a heap: running an event takes
+  // the front, and a new one is found by binary search and moves the shorter side.
+  std::vector<Entry> queue_;
+  std::size_t head_ = 0;
   std::vector<Slot> slots_;
-  std::vector<std::uint32_t> free_slots_;
+  std::uint32_t free_head_ = 0;  // index + 1 of the first free slot, 0: none
 };
 
 }  // namespace sercon::sim
