@@ -15,88 +15,90 @@ namespace {
 
 }  // namespace
 
-std::uint32_t Scheduler::new_slot() {
-  slots_.emplace_back();
-  return static_cast<std::uint32_t>(slots_.size() - 1);
-}
-
-std::uint32_t Scheduler::take_slot(Time when) {
+Scheduler::Slot& Scheduler::take_slot(Time when) {
   if (when < now_) throw_past("Scheduler::at", when, now_);
   std::uint32_t index;
   if (free_head_ != 0) {
     index = free_head_ - 1;
     free_head_ = slots_[index].next_free;
   } else {
-    index = new_slot();
+    index = static_cast<std::uint32_t>(slots_.size());
+    slots_.emplace_back();
   }
   Slot& slot = slots_[index];
-  slot.live = true;
+  ++slot.generation;  // odd: live
   ++live_count_;
-  insert(Entry{when, index, slot.generation});
-  return index;
+  insert(when, index, slot.generation);
+  return slot;
 }
 
-// The queue is full: drop the entries that have run when they are at least half of it,
-// otherwise grow.
+// The queue's storage is full: drop the entries that have run when they are at least
+// half of it, otherwise grow.
 void Scheduler::make_room() {
-  if (head_ * 2 >= queue_.size()) {
-    queue_.erase(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(head_));
+  if (head_ > 0 && head_ * 2 >= tail_) {
+    std::copy(queue_.begin() + static_cast<std::ptrdiff_t>(head_),
+              queue_.begin() + static_cast<std::ptrdiff_t>(tail_), queue_.begin());
+    tail_ -= head_;
     head_ = 0;
   } else {
-    queue_.reserve(queue_.capacity() * 2);
+    queue_.resize(std::max<std::size_t>(16, queue_.size() * 2));
   }
 }
 
 // After every entry at or before `when`: same-time events run in scheduling order.
-void Scheduler::insert(const Entry& entry) {
-  if (queue_empty()) {
-    queue_.clear();
-    head_ = 0;
-    queue_.push_back(entry);
+void Scheduler::insert(Time when, std::uint32_t slot, std::uint32_t generation) {
+  const Entry entry{when, slot, generation};
+  if (head_ == tail_) {
+    head_ = tail_ = 0;
+  } else if (when < queue_[tail_ - 1].when) {
+    Entry* const first = queue_.data() + head_;
+    Entry* const last = queue_.data() + tail_;
+    // Branch-free upper bound: the first entry later than `when` (one exists).
+    Entry* base = first;
+    for (std::size_t n = tail_ - head_; n > 1;) {
+      const std::size_t half = n / 2;
+      base = base[half].when <= when ? base + half : base;
+      n -= half;
+    }
+    Entry* const at = base + (base->when <= when);
+    // Move the shorter side: the entries before `at` one place towards those that have
+    // run, or those from `at` on one place back.
+    if (head_ > 0 && at - first <= last - at) {
+      std::copy(first, at, first - 1);
+      at[-1] = entry;
+      --head_;
+      return;
+    }
+    if (tail_ == queue_.size()) {
+      const std::size_t offset = static_cast<std::size_t>(at - first);
+      make_room();
+      Entry* const moved = queue_.data() + head_ + offset;
+      std::copy_backward(moved, queue_.data() + tail_, queue_.data() + tail_ + 1);
+      *moved = entry;
+    } else {
+      std::copy_backward(at, last, last + 1);
+      *at = entry;
+    }
+    ++tail_;
     return;
   }
-  if (entry.when >= queue_.back().when) {
-    if (queue_.size() == queue_.capacity()) make_room();
-    queue_.push_back(entry);
-    return;
-  }
-  Entry* first = queue_.data() + head_;
-  Entry* last = queue_.data() + queue_.size();
-  Entry* at = std::upper_bound(first, last, entry.when,
-                               [](Time when, const Entry& e) { return when < e.when; });
-  // Move the shorter side: the entries before `at` one place towards those that have
-  // run, or those from `at` on one place back.
-  if (head_ > 0 && at - first <= last - at) {
-    std::move(first, at, first - 1);
-    at[-1] = entry;
-    --head_;
-    return;
-  }
-  if (queue_.size() == queue_.capacity()) {
-    const std::ptrdiff_t offset = at - queue_.data();
-    const std::size_t head = head_;
-    make_room();
-    at = queue_.data() + offset - (head - head_);
-  }
-  queue_.push_back(queue_.back());
-  last = queue_.data() + queue_.size() - 1;
-  std::move_backward(at, last - 1, last);
-  *at = entry;
+  if (tail_ == queue_.size()) make_room();
+  queue_[tail_++] = entry;
 }
 
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
-  const std::uint32_t index = take_slot(when);
-  Slot& slot = slots_[index];
+  Slot& slot = take_slot(when);
   slot.action = nullptr;
   slot.callback = std::move(callback);
+  const auto index = static_cast<std::uint32_t>(&slot - slots_.data());
   return EventId{std::uint64_t{slot.generation} << 32 | (index + 1u)};
 }
 
 Scheduler::EventId Scheduler::at(Time when, Action action, void* context) {
-  const std::uint32_t index = take_slot(when);
-  Slot& slot = slots_[index];
+  Slot& slot = take_slot(when);
   slot.action = action;
   slot.context = context;
+  const auto index = static_cast<std::uint32_t>(&slot - slots_.data());
   return EventId{std::uint64_t{slot.generation} << 32 | (index + 1u)};
 }
 
@@ -105,44 +107,44 @@ void Scheduler::release(std::uint32_t index) {
   free_slot(index);
 }
 
-bool Scheduler::run_next_due(Time until) {
-  drop_dead_fronts();
-  if (queue_empty() || queue_[head_].when > until) return false;
-  const Entry next = queue_[head_++];
-  Slot& slot = slots_[next.slot];
-  now_ = next.when;
+void Scheduler::run(const Entry& entry) {
+  ++head_;
+  now_ = entry.when;
+  const std::uint32_t index = entry.slot;
+  Slot& slot = slots_[index];
   // Take the event out before running it: it may schedule others (slots_ may grow).
   if (slot.action != nullptr) {
     const Action action = slot.action;
     void* const context = slot.context;
-    free_slot(next.slot);
+    free_slot(index);
     action(context);
   } else {
     Callback callback = std::move(slot.callback);
     slot.callback = nullptr;
-    free_slot(next.slot);
+    free_slot(index);
     callback();
   }
-  return true;
 }
 
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
-  while (run_next_due(until)) {
+  for (const Entry* next = front(); next != nullptr && next->when <= until; next = front()) {
+    run(*next);
   }
   now_ = until;
 }
 
 bool Scheduler::step() {
-  drop_dead_fronts();
-  if (queue_empty()) return false;
-  return run_next_due(queue_[head_].when);
+  const Entry* next = front();
+  if (next == nullptr) return false;
+  run(*next);
+  return true;
 }
 
 std::optional<Time> Scheduler::next_time() {
-  drop_dead_fronts();
-  if (queue_empty()) return std::nullopt;
-  return queue_[head_].when;
+  const Entry* next = front();
+  if (next == nullptr) return std::nullopt;
+  return next->when;
 }
 
 }  // namespace sercon::sim

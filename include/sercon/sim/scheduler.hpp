@@ -58,19 +58,20 @@ class Scheduler {
   std::optional<Time> next_time();
 
  private:
-  // Events live in reusable slots (no allocation per event once the vectors have grown);
-  // an EventId is the slot's index + 1 and its generation, so a stale id never matches a
-  // reused slot. The queue holds only {time, slot, generation}, sorted by time; an event
-  // goes in after every entry of its time, so same-time events keep their scheduling
-  // order without a sequence number. A cancelled event's entry is dropped when it comes
-  // to the front (its generation no longer matches).
+  // Events live in reusable slots (no allocation per event once the vectors have grown).
+  // A slot's generation is odd while it holds an event and goes up by one when it is
+  // taken and when it is freed; an EventId is the slot's index + 1 and that odd
+  // generation, so a stale id never matches a reused slot. The queue holds only
+  // {time, slot, generation}, sorted by time; an event goes in after every entry of its
+  // time, so same-time events keep their scheduling order without a sequence number. A
+  // cancelled event's entry is dropped when it comes to the front (its generation no
+  // longer matches).
   struct Slot {
     Action action = nullptr;  // null: `callback` holds the event
     void* context = nullptr;
     Callback callback;
-    std::uint32_t generation = 1;
+    std::uint32_t generation = 0;
     std::uint32_t next_free = 0;  // free list link: index + 1, 0 ends the list
-    bool live = false;
   };
   struct Entry {
     Time when;
@@ -78,12 +79,10 @@ class Scheduler {
     std::uint32_t generation;
   };
 
-  std::uint32_t take_slot(Time when);
-  std::uint32_t new_slot();
+  Slot& take_slot(Time when);
   void free_slot(std::uint32_t index) {
     Slot& slot = slots_[index];
-    slot.live = false;
-    ++slot.generation;  // stale ids and queue entries no longer match
+    ++slot.generation;  // even: stale ids and queue entries no longer match
     slot.next_free = free_head_;
     free_head_ = index + 1;
     --live_count_;
@@ -93,31 +92,30 @@ class Scheduler {
     const std::uint64_t index = (id.value & 0xFFFF'FFFFu);
     if (index == 0 || index > slots_.size()) return nullptr;
     const Slot& slot = slots_[index - 1];
-    if (!slot.live || slot.generation != static_cast<std::uint32_t>(id.value >> 32)) {
-      return nullptr;
+    return slot.generation == static_cast<std::uint32_t>(id.value >> 32) ? &slot : nullptr;
+  }
+  // The first queue entry of a pending event, dropping those of cancelled ones; null when
+  // nothing is pending.
+  const Entry* front() {
+    for (; head_ != tail_; ++head_) {
+      const Entry& entry = queue_[head_];
+      if (slots_[entry.slot].generation == entry.generation) return &entry;
     }
-    return &slot;
+    return nullptr;
   }
-  bool front_is_live() const {
-    const Entry& front = queue_[head_];
-    const Slot& slot = slots_[front.slot];
-    return slot.live && slot.generation == front.generation;
-  }
-  void drop_dead_fronts() {
-    while (!queue_empty() && !front_is_live()) ++head_;
-  }
-  bool queue_empty() const { return head_ == queue_.size(); }
-  void insert(const Entry& entry);
+  void insert(Time when, std::uint32_t slot, std::uint32_t generation);
   void make_room();
-  bool run_next_due(Time until);
+  void run(const Entry& entry);  // takes `entry` off the front and runs its event
 
   Time now_ = 0;
   std::size_t live_count_ = 0;
-  // Sorted by `when`, earliest at queue_[head_]; entries before head_ have run. With a
-  // couple of dozen pending events a sorted array beats a heap: running an event takes
-  // the front, and a new one is found by binary search and moves the shorter side.
+  // queue_[head_, tail_) sorted by `when`, the earliest first; queue_ is only storage
+  // (its size is the capacity). With a couple of dozen pending events a sorted array
+  // beats a heap: running an event takes the front, and a new one is placed by binary
+  // search and moves the shorter side.
   std::vector<Entry> queue_;
   std::size_t head_ = 0;
+  std::size_t tail_ = 0;
   std::vector<Slot> slots_;
   std::uint32_t free_head_ = 0;  // index + 1 of the first free slot, 0: none
 };
