@@ -28,10 +28,14 @@ void CycleWindow::expect_next(bool after_miss) {
   closes_ = tscyc_ + signed16(regs.value(kJtscyc2));
   state_ = after_miss ? State::Missed : State::Synced;
   // A window programmed to close before the counter's start closes at the first step.
-  close_event_ = time_base_.at_cycle_time(std::max(closes_, time_base_.count()), [this] {
-    close_event_ = 0;
-    close();
-  });
+  close_event_ =
+      time_base_.at_cycle_time(std::max(closes_, time_base_.count()), &CycleWindow::closes, this);
+}
+
+void CycleWindow::closes(void* window) {
+  auto& w = *static_cast<CycleWindow*>(window);
+  w.close_event_ = 0;
+  w.close();
 }
 
 void CycleWindow::forget() {

@@ -38,26 +38,8 @@ TimeBase::TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid
 TimeBase::~TimeBase() { cancel_all(); }
 
 void TimeBase::cancel_all() {
-  for (auto& pending : slots_) {
-    if (pending->id == 0) continue;
-    scheduler_.cancel(pending->event);
-    release(*pending);
-  }
-}
-
-TimeBase::Pending* TimeBase::find(CycleEvent id) const {
-  const std::uint64_t index = id & ((std::uint64_t{1} << kIndexBits) - 1);
-  if (index == 0 || index > slots_.size()) return nullptr;
-  Pending* pending = slots_[index - 1].get();
-  return pending->id == id ? pending : nullptr;
-}
-
-void TimeBase::release(Pending& pending) {
-  const std::uint64_t index = pending.id & ((std::uint64_t{1} << kIndexBits) - 1);
-  pending.id = 0;
-  pending.action = nullptr;
-  if (pending.callback) pending.callback = nullptr;  // what it captured goes now
-  free_slots_.push_back(static_cast<std::uint32_t>(index - 1));
+  for (const Planned& planned : planned_) scheduler_.cancel(planned.event);
+  planned_.clear();
 }
 
 void TimeBase::reset(ResetCause) {
@@ -111,91 +93,54 @@ void TimeBase::begin(CycleKind kind) {
 }
 
 // Events due exactly now belong to the step that has just happened in the old cycle and
-// still run; later ones belonged to the old cycle and are dropped.
+// still run; later ones belonged to the old cycle and are dropped. Earlier ones have run
+// or were cancelled.
 void TimeBase::drop_future_events() {
   const sim::Time now = scheduler_.now();
-  for (auto& pending : slots_) {
-    if (pending->id == 0 || pending->when <= now) continue;
-    scheduler_.cancel(pending->event);
-    release(*pending);
+  std::size_t kept = 0;
+  for (const Planned& planned : planned_) {
+    if (planned.when > now) {
+      scheduler_.cancel(planned.event);
+    } else if (planned.when == now && scheduler_.pending(planned.event)) {
+      planned_[kept++] = planned;
+    }
   }
+  planned_.resize(kept);
 }
 
-TimeBase::Pending* TimeBase::claim(std::int64_t cycle_time) {
-  if (!running_ || tick_of(cycle_time) <= ticks_.count_through(now_edge())) return nullptr;
-  std::uint32_t index;
-  if (!free_slots_.empty()) {
-    index = free_slots_.back();
-    free_slots_.pop_back();
-  } else {
-    if (slots_.size() + 1 >= (std::size_t{1} << kIndexBits)) {
-      throw std::length_error("TimeBase: too many pending cycle-time events");
-    }
-    index = static_cast<std::uint32_t>(slots_.size());
-    slots_.push_back(std::make_unique<Pending>());
-    slots_.back()->owner = this;
+template <typename Schedule>
+TimeBase::CycleEvent TimeBase::plan(std::int64_t cycle_time, Schedule event_at) {
+  if (!ahead(cycle_time)) return 0;
+  if (planned_.size() >= prune_at_) {
+    std::erase_if(planned_,
+                  [this](const Planned& planned) { return !scheduler_.pending(planned.event); });
+    prune_at_ = std::max<std::size_t>(16, 2 * planned_.size());
   }
-  Pending& pending = *slots_[index];
-  pending.id = next_sequence_++ << kIndexBits | (index + 1u);
-  pending.cycle_time = cycle_time;
-  return &pending;
+  const sim::Time when = time_of_step(cycle_time);
+  const sim::Scheduler::EventId event = event_at(when);
+  planned_.push_back(Planned{event, cycle_time, when});
+  return event.value;
 }
 
 TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
                                              std::function<void()> callback) {
-  Pending* pending = claim(cycle_time);
-  if (pending == nullptr) return 0;
-  pending->callback = std::move(callback);
-  schedule(*pending);
-  return pending->id;
+  return plan(cycle_time, [&](sim::Time when) { return scheduler_.at(when, std::move(callback)); });
 }
 
 TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action,
                                              void* context) {
-  Pending* pending = claim(cycle_time);
-  if (pending == nullptr) return 0;
-  pending->action = action;
-  pending->context = context;
-  schedule(*pending);
-  return pending->id;
+  return plan(cycle_time, [&](sim::Time when) { return scheduler_.at(when, action, context); });
 }
 
-void TimeBase::schedule(Pending& pending) {
-  pending.when = mclk_.time_of(ticks_.edge_of(tick_of(pending.cycle_time)));
-  pending.event = scheduler_.at(pending.when, &TimeBase::fire, &pending);
-}
-
-// The slot is freed before the callback runs: the callback may ask for new events.
-void TimeBase::fire(void* context) {
-  auto& pending = *static_cast<Pending*>(context);
-  if (pending.action != nullptr) {
-    const sim::Scheduler::Action action = pending.action;
-    void* const action_context = pending.context;
-    pending.owner->release(pending);
-    action(action_context);
-    return;
-  }
-  auto callback = std::move(pending.callback);
-  pending.owner->release(pending);
-  callback();
-}
-
-void TimeBase::cancel(CycleEvent event) {
-  Pending* pending = find(event);
-  if (pending == nullptr) return;
-  scheduler_.cancel(pending->event);
-  release(*pending);
-}
+void TimeBase::cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
 
 std::optional<sim::Time> TimeBase::when(CycleEvent event) const {
-  const Pending* pending = find(event);
-  if (pending == nullptr) return std::nullopt;
-  return pending->when;
+  return scheduler_.when(sim::Scheduler::EventId{event});
 }
 
 std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) const {
-  if (!running_ || tick_of(cycle_time) <= ticks_.count_through(now_edge())) return std::nullopt;
-  return mclk_.time_of(ticks_.edge_of(tick_of(cycle_time)));
+  if (!ahead(cycle_time)) return std::nullopt;
+  return time_of_step(cycle_time);
 }
 
 void TimeBase::on_cycle_start(std::function<void(const CycleStart&)> listener) {
@@ -221,18 +166,14 @@ void TimeBase::on_register_change(std::uint8_t address) {
   const Edge edge = mclk_.first_at_or_after(scheduler_.now());
   ticks_.change_period(edge, tick_period());
   free_.change_period(edge, tick_period());
-  // Rescheduled in the order they were asked for (ids increase), so events that now
-  // share a time run in that order.
-  std::vector<Pending*> moved;
-  for (auto& pending : slots_) {
-    if (pending->id == 0 || pending->when <= mclk_.time_of(edge)) continue;  // tick before
-    moved.push_back(pending.get());
-  }
-  std::sort(moved.begin(), moved.end(),
-            [](const Pending* a, const Pending* b) { return a->id < b->id; });
-  for (Pending* pending : moved) {
-    scheduler_.cancel(pending->event);
-    schedule(*pending);
+  // Moved in the order they were asked for, each after the events already due at its
+  // new time, so events that now share a time run in that order.
+  const sim::Time changed_at = mclk_.time_of(edge);
+  for (Planned& planned : planned_) {
+    // Ran or cancelled, or due at the tick before the change: stays.
+    if (planned.when <= changed_at || !scheduler_.pending(planned.event)) continue;
+    planned.when = time_of_step(planned.cycle_time);
+    scheduler_.move(planned.event, planned.when);
   }
   for (auto& listener : divider_listeners_) listener(edge, tick_period());
 }

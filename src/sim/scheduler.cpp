@@ -27,6 +27,7 @@ Scheduler::Slot& Scheduler::take_slot(Time when) {
   }
   Slot& slot = slots_[index];
   ++slot.generation;  // odd: live
+  slot.when = when;
   ++live_count_;
   insert(when, index, slot.generation);
   return slot;
@@ -100,6 +101,28 @@ Scheduler::EventId Scheduler::at(Time when, Action action, void* context) {
   slot.context = context;
   const auto index = static_cast<std::uint32_t>(&slot - slots_.data());
   return EventId{std::uint64_t{slot.generation} << 32 | (index + 1u)};
+}
+
+// Takes a pending event's entry out of the queue (it is there: live entries are never
+// passed over).
+void Scheduler::remove(Time when, std::uint32_t slot) {
+  Entry* const last = queue_.data() + tail_;
+  Entry* at = std::lower_bound(queue_.data() + head_, last, when,
+                               [](const Entry& e, Time t) { return e.when < t; });
+  while (at->slot != slot) ++at;
+  std::copy(at + 1, last, at);
+  --tail_;
+}
+
+bool Scheduler::move(EventId id, Time when) {
+  if (when < now_) throw_past("Scheduler::move", when, now_);
+  if (live_slot(id) == nullptr) return false;
+  const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
+  Slot& slot = slots_[index];
+  remove(slot.when, index);
+  slot.when = when;
+  insert(when, index, slot.generation);
+  return true;
 }
 
 void Scheduler::release(std::uint32_t index) {

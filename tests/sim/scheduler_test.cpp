@@ -143,6 +143,26 @@ TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
   EXPECT_EQ(s.pending_count(), 0u);
 }
 
+// docs/timing.md, "Cycle-time events" (moved if MCLKDIV changes) and docs/architecture.md,
+// "Determinism": a moved event keeps its id and runs after the events already due at its
+// new time, as if scheduled then; when() follows it and is empty once it ran.
+TEST(Scheduler, MovedEventKeepsItsIdAndGoesAfterThoseAtItsNewTime) {
+  Scheduler s;
+  std::vector<char> order;
+  const auto moved = s.at(10, [&] { order.push_back('m'); });
+  s.at(30, [&] { order.push_back('a'); });
+  s.at(20, [&] { order.push_back('b'); });
+  EXPECT_EQ(s.when(moved), 10);
+  EXPECT_TRUE(s.move(moved, 30));
+  EXPECT_EQ(s.when(moved), 30);
+  s.at(30, [&] { order.push_back('c'); });
+  EXPECT_THROW(s.move(moved, -1), std::invalid_argument);
+  s.run_until(100);
+  EXPECT_EQ(order, (std::vector<char>{'b', 'a', 'm', 'c'}));
+  EXPECT_EQ(s.when(moved), std::nullopt);
+  EXPECT_FALSE(s.move(moved, 200));
+}
+
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
   EXPECT_EQ(period_of_hz(16'000'000), 62'500);  // 16 Mbit/s bit: 62.5 ns
   EXPECT_EQ(period_of_hz(64'000'000), 15'625);  // 64 MHz MCLK: 15.625 ns

@@ -43,6 +43,7 @@ class CycleWindow {
   std::uint16_t tscyc() const { return tscyc_; }
 
  private:
+  static void closes(void* window);  // the close event (function + context)
   void close();
 
   TimeBase& time_base_;

@@ -13,7 +13,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <optional>
 #include <vector>
 
@@ -97,29 +96,26 @@ class TimeBase : public ChipUnit {
   Edge free_tick_after(sim::Time t, std::int64_t n) const;
 
  private:
-  // Pending events live in reusable slots (no allocation per event once grown). A slot's
-  // address is the scheduler context of its event, so slots are never moved or freed
-  // before the TimeBase. An id is (sequence << kIndexBits) | (index + 1): never reused
-  // (2^44 sequence numbers), so a stale id never matches, and ids still increase in the
-  // order events were asked for.
-  static constexpr int kIndexBits = 20;
-  struct Pending {
-    TimeBase* owner = nullptr;
-    CycleEvent id = 0;  // 0: the slot is free
-    std::int64_t cycle_time = 0;
-    std::function<void()> callback;  // used when `action` is null
-    sim::Scheduler::Action action = nullptr;
-    void* context = nullptr;
+  // A cycle-time event is a scheduler event: its id is the scheduler's EventId, never
+  // reused (a slot's generation changes), so a stale id never matches. `planned_` keeps
+  // them in the order they were asked for, to drop, move or cancel them; entries of
+  // events that ran or were cancelled are pruned from time to time.
+  struct Planned {
     sim::Scheduler::EventId event;
-    sim::Time when = 0;
+    std::int64_t cycle_time;
+    sim::Time when;  // kept up to date while pending
   };
-  static void fire(void* context);
-  Pending* find(CycleEvent id) const;
-  Pending* claim(std::int64_t cycle_time);  // a slot for an event at cycle_time, or null
-  void release(Pending& pending);
+  bool ahead(std::int64_t cycle_time) const {
+    return running_ && tick_of(cycle_time) > ticks_.count_through(now_edge());
+  }
+  sim::Time time_of_step(std::int64_t cycle_time) const {
+    return mclk_.time_of(ticks_.edge_of(tick_of(cycle_time)));
+  }
+  // Asks the scheduler for `event_at(when)` and keeps the event in planned_.
+  template <typename Schedule>
+  CycleEvent plan(std::int64_t cycle_time, Schedule event_at);
   Edge now_edge() const { return mclk_.last_at_or_before(scheduler_.now()); }
   std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
-  void schedule(Pending& pending);
   void drop_future_events();
   void cancel_all();
   void begin(CycleKind kind);
@@ -134,9 +130,8 @@ class TimeBase : public ChipUnit {
   std::int64_t base_ = 0;     // counter value before the first tick of ticks_
   DividerTicks ticks_;        // the cycle counter's divider
   DividerTicks free_;         // the free-running divider
-  CycleEvent next_sequence_ = 1;
-  std::vector<std::unique_ptr<Pending>> slots_;
-  std::vector<std::uint32_t> free_slots_;
+  std::vector<Planned> planned_;
+  std::size_t prune_at_ = 16;  // planned_ size at which track() drops stale entries
   std::vector<std::function<void(const CycleStart&)>> cycle_listeners_;
   std::vector<std::function<void(Edge, std::int64_t)>> divider_listeners_;
 };

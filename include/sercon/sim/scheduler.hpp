@@ -46,6 +46,16 @@ class Scheduler {
     return true;
   }
   bool pending(EventId id) const { return live_slot(id) != nullptr; }
+  // When a pending event runs; nullopt once it ran or was cancelled.
+  std::optional<Time> when(EventId id) const {
+    const Slot* slot = live_slot(id);
+    if (slot == nullptr) return std::nullopt;
+    return slot->when;
+  }
+  // Moves a pending event to `when`, keeping its id: it then runs after the events
+  // already due at `when`, as if scheduled anew. Throws std::invalid_argument if `when`
+  // is in the past; returns false (moving nothing) when the event is not pending.
+  bool move(EventId id, Time when);
   std::size_t pending_count() const { return live_count_; }
 
   // Runs every event due at or before `until`, then sets the clock to `until`.
@@ -70,6 +80,7 @@ class Scheduler {
     Action action = nullptr;  // null: `callback` holds the event
     void* context = nullptr;
     Callback callback;
+    Time when = 0;
     std::uint32_t generation = 0;
     std::uint32_t next_free = 0;  // free list link: index + 1, 0 ends the list
   };
@@ -104,6 +115,7 @@ class Scheduler {
     return nullptr;
   }
   void insert(Time when, std::uint32_t slot, std::uint32_t generation);
+  void remove(Time when, std::uint32_t slot);
   void make_room();
   void run(const Entry& entry);  // takes `entry` off the front and runs its event
 
