@@ -1,6 +1,7 @@
 #include "sercon/sim/scheduler.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -33,30 +34,30 @@ Scheduler::Slot& Scheduler::take_slot(Time when) {
   return slot;
 }
 
-// The queue's storage is full: drop the entries that have run when they are at least
-// half of it, otherwise grow.
-void Scheduler::make_room() {
-  if (head_ > 0 && head_ * 2 >= tail_) {
-    std::copy(queue_.begin() + static_cast<std::ptrdiff_t>(head_),
-              queue_.begin() + static_cast<std::ptrdiff_t>(tail_), queue_.begin());
-    tail_ -= head_;
-    head_ = 0;
+// The storage is full: drop the entries that have run when they are at least half of
+// it, otherwise grow.
+void Scheduler::SortedRun::make_room() {
+  if (head > 0 && head * 2 >= tail) {
+    std::copy(buffer.begin() + static_cast<std::ptrdiff_t>(head),
+              buffer.begin() + static_cast<std::ptrdiff_t>(tail), buffer.begin());
+    tail -= head;
+    head = 0;
   } else {
-    queue_.resize(std::max<std::size_t>(16, queue_.size() * 2));
+    buffer.resize(std::max<std::size_t>(16, buffer.size() * 2));
   }
 }
 
 // After every entry at or before `when`: same-time events run in scheduling order.
-void Scheduler::insert(Time when, std::uint32_t slot, std::uint32_t generation) {
-  const Entry entry{when, slot, generation};
-  if (head_ == tail_) {
-    head_ = tail_ = 0;
-  } else if (when < queue_[tail_ - 1].when) {
-    Entry* const first = queue_.data() + head_;
-    Entry* const last = queue_.data() + tail_;
+void Scheduler::SortedRun::insert(const Entry& entry) {
+  const Time when = entry.when;
+  if (head == tail) {
+    head = tail = 0;
+  } else if (when < buffer[tail - 1].when) {
+    Entry* const first = buffer.data() + head;
+    Entry* const last = buffer.data() + tail;
     // Branch-free upper bound: the first entry later than `when` (one exists).
     Entry* base = first;
-    for (std::size_t n = tail_ - head_; n > 1;) {
+    for (std::size_t n = tail - head; n > 1;) {
       const std::size_t half = n / 2;
       base = base[half].when <= when ? base + half : base;
       n -= half;
@@ -64,27 +65,53 @@ void Scheduler::insert(Time when, std::uint32_t slot, std::uint32_t generation) 
     Entry* const at = base + (base->when <= when);
     // Move the shorter side: the entries before `at` one place towards those that have
     // run, or those from `at` on one place back.
-    if (head_ > 0 && at - first <= last - at) {
+    if (head > 0 && at - first <= last - at) {
       std::copy(first, at, first - 1);
       at[-1] = entry;
-      --head_;
+      --head;
       return;
     }
-    if (tail_ == queue_.size()) {
+    if (tail == buffer.size()) {
       const std::size_t offset = static_cast<std::size_t>(at - first);
       make_room();
-      Entry* const moved = queue_.data() + head_ + offset;
-      std::copy_backward(moved, queue_.data() + tail_, queue_.data() + tail_ + 1);
+      Entry* const moved = buffer.data() + head + offset;
+      std::copy_backward(moved, buffer.data() + tail, buffer.data() + tail + 1);
       *moved = entry;
     } else {
       std::copy_backward(at, last, last + 1);
       *at = entry;
     }
-    ++tail_;
+    ++tail;
     return;
   }
-  if (tail_ == queue_.size()) make_room();
-  queue_[tail_++] = entry;
+  if (tail == buffer.size()) make_room();
+  buffer[tail++] = entry;
+}
+
+// Takes a pending event's entry out (it is there: live entries are never passed over).
+void Scheduler::SortedRun::remove(Time when, std::uint32_t slot) {
+  Entry* const last = buffer.data() + tail;
+  Entry* at = std::lower_bound(buffer.data() + head, last, when,
+                               [](const Entry& e, Time t) { return e.when < t; });
+  while (at->slot != slot) ++at;
+  std::copy(at + 1, last, at);
+  --tail;
+}
+
+// near_ is empty: move the limit past the earliest far entry and bring the entries up
+// to it over (those of cancelled events stay behind).
+void Scheduler::refill() {
+  const Time earliest = far_.buffer[far_.head].when;
+  near_limit_ = earliest > std::numeric_limits<Time>::max() - (kHorizon - 1)
+                    ? std::numeric_limits<Time>::max()
+                    : earliest + (kHorizon - 1);
+  near_.head = near_.tail = 0;
+  for (; far_.head != far_.tail && far_.buffer[far_.head].when <= near_limit_; ++far_.head) {
+    const Entry& entry = far_.buffer[far_.head];
+    if (slots_[entry.slot].generation != entry.generation) continue;
+    if (near_.tail == near_.buffer.size()) near_.make_room();
+    near_.buffer[near_.tail++] = entry;
+  }
 }
 
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
@@ -103,23 +130,12 @@ Scheduler::EventId Scheduler::at(Time when, Action action, void* context) {
   return EventId{std::uint64_t{slot.generation} << 32 | (index + 1u)};
 }
 
-// Takes a pending event's entry out of the queue (it is there: live entries are never
-// passed over).
-void Scheduler::remove(Time when, std::uint32_t slot) {
-  Entry* const last = queue_.data() + tail_;
-  Entry* at = std::lower_bound(queue_.data() + head_, last, when,
-                               [](const Entry& e, Time t) { return e.when < t; });
-  while (at->slot != slot) ++at;
-  std::copy(at + 1, last, at);
-  --tail_;
-}
-
 bool Scheduler::move(EventId id, Time when) {
   if (when < now_) throw_past("Scheduler::move", when, now_);
   if (live_slot(id) == nullptr) return false;
   const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
   Slot& slot = slots_[index];
-  remove(slot.when, index);
+  (slot.when <= near_limit_ ? near_ : far_).remove(slot.when, index);
   slot.when = when;
   insert(when, index, slot.generation);
   return true;
@@ -131,7 +147,7 @@ void Scheduler::release(std::uint32_t index) {
 }
 
 void Scheduler::run(const Entry& entry) {
-  ++head_;
+  ++near_.head;
   now_ = entry.when;
   const std::uint32_t index = entry.slot;
   Slot& slot = slots_[index];

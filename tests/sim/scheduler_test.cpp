@@ -91,54 +91,72 @@ TEST(Scheduler, NextTimeSkipsCancelledEventsAndRunsNothing) {
 }
 
 // docs/architecture.md, "Determinism": events run in time order, and events at the same
-// picosecond in the order they were scheduled, however many are pending and whatever was
-// cancelled or scheduled while others ran (the queue moves entries both ways and reuses
-// the room of those that ran).
+// picosecond in the order they were scheduled (a moved event as if scheduled when moved),
+// however many are pending, whatever was cancelled or moved meanwhile, and whether they
+// are due soon or hundreds of µs ahead (the queue keeps soon and later events apart).
 TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
   Scheduler s;
-  struct Planned {
+  struct Event {
     Time when;
-    int serial;
+    int order;  // the scheduling (or moving) order
+    Scheduler::EventId id;
+    bool cancelled = false;
   };
-  std::vector<Planned> planned;  // in scheduling order
-  std::vector<int> cancelled;
-  std::vector<Scheduler::EventId> ids;
-  std::vector<Planned> seen;
+  std::vector<Event> events;
+  std::vector<std::pair<Time, std::size_t>> seen;
   std::uint32_t random = 12345;
   auto next_random = [&random](std::uint32_t range) {
     random = random * 1103515245u + 12345u;
     return (random >> 8) % range;
   };
-  int serial = 0;
-  auto schedule = [&](Time when) {
-    const int mine = serial++;
-    planned.push_back({when, mine});
-    ids.push_back(s.at(when, [&s, &seen, mine] { seen.push_back({s.now(), mine}); }));
+  constexpr Time kUnit = 10 * kMicrosecond;  // offsets up to 400 µs: many share a time
+  auto ahead = [&] {                         // a whole number of units from now, some 1 ps early
+    const Time when =
+        s.now() + static_cast<Time>(next_random(40)) * kUnit - static_cast<Time>(next_random(2));
+    return std::max(when, s.now());
   };
-  for (int round = 0; round < 200; ++round) {
+  int order = 0;
+  for (int round = 0; round < 300; ++round) {
     const std::uint32_t count = next_random(12);
     for (std::uint32_t i = 0; i < count; ++i) {
-      schedule(s.now() + static_cast<Time>(next_random(40)));  // many share a time
+      const Time when = ahead();
+      const std::size_t k = events.size();
+      events.push_back({when, order++, {}});
+      events[k].id = s.at(when, [&s, &seen, k] { seen.emplace_back(s.now(), k); });
     }
-    if (!ids.empty() && next_random(3) == 0) {
-      const std::size_t victim = next_random(static_cast<std::uint32_t>(ids.size()));
-      if (s.cancel(ids[victim])) cancelled.push_back(planned[victim].serial);
+    if (events.empty()) continue;
+    Event& e = events[next_random(static_cast<std::uint32_t>(events.size()))];
+    switch (next_random(3)) {
+      case 0:
+        if (s.cancel(e.id)) e.cancelled = true;
+        break;
+      case 1: {
+        const Time when = ahead();
+        if (s.move(e.id, when)) {
+          e.when = when;
+          e.order = order++;
+        }
+        break;
+      }
+      default:
+        break;
     }
-    s.run_until(s.now() + static_cast<Time>(next_random(15)));
+    s.run_until(s.now() + static_cast<Time>(next_random(15)) * kUnit);
   }
-  s.run_until(s.now() + 100);
-  std::vector<Planned> expected;
-  for (const Planned& p : planned) {
-    if (std::find(cancelled.begin(), cancelled.end(), p.serial) == cancelled.end()) {
-      expected.push_back(p);
-    }
+  s.run_until(s.now() + 100 * kUnit);
+  std::vector<std::size_t> expected;
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    if (!events[k].cancelled) expected.push_back(k);
   }
-  std::stable_sort(expected.begin(), expected.end(),
-                   [](const Planned& a, const Planned& b) { return a.when < b.when; });
+  std::sort(expected.begin(), expected.end(), [&events](std::size_t a, std::size_t b) {
+    const Event& x = events[a];
+    const Event& y = events[b];
+    return x.when != y.when ? x.when < y.when : x.order < y.order;
+  });
   ASSERT_EQ(seen.size(), expected.size());
   for (std::size_t i = 0; i < seen.size(); ++i) {
-    EXPECT_EQ(seen[i].when, expected[i].when) << "event " << i;
-    EXPECT_EQ(seen[i].serial, expected[i].serial) << "event " << i;
+    EXPECT_EQ(seen[i].second, expected[i]) << "event " << i;
+    EXPECT_EQ(seen[i].first, events[expected[i]].when) << "event " << i;
   }
   EXPECT_EQ(s.pending_count(), 0u);
 }
