@@ -33,12 +33,15 @@ void TickAlarm::cancel() {
 void TickAlarm::schedule(Edge edge) {
   // A tick is never in the past when set; the clamp is a guard, not a rule.
   when_ = std::max(mclk_.time_of(edge), scheduler_.now());
-  event_ = scheduler_.at(when_, [this] {
-    event_ = {};
-    auto callback = std::move(callback_);
-    callback_ = nullptr;
-    callback();
-  });
+  event_ = scheduler_.at(when_, &TickAlarm::fire, this);
+}
+
+void TickAlarm::fire(void* alarm) {
+  auto& a = *static_cast<TickAlarm*>(alarm);
+  a.event_ = {};
+  auto callback = std::move(a.callback_);
+  a.callback_ = nullptr;
+  callback();
 }
 
 }  // namespace sercon::chip

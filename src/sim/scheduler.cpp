@@ -16,22 +16,9 @@ namespace {
 
 }  // namespace
 
-Scheduler::Slot& Scheduler::take_slot(Time when) {
-  if (when < now_) throw_past("Scheduler::at", when, now_);
-  std::uint32_t index;
-  if (free_head_ != 0) {
-    index = free_head_ - 1;
-    free_head_ = slots_[index].next_free;
-  } else {
-    index = static_cast<std::uint32_t>(slots_.size());
-    slots_.emplace_back();
-  }
-  Slot& slot = slots_[index];
-  ++slot.generation;  // odd: live
-  slot.when = when;
-  ++live_count_;
-  insert(when, index, slot.generation);
-  return slot;
+[[gnu::noinline]] std::uint32_t Scheduler::new_slot() {
+  slots_.emplace_back();
+  return static_cast<std::uint32_t>(slots_.size() - 1);
 }
 
 // The storage is full: drop the entries that have run when they are at least half of
@@ -115,19 +102,21 @@ void Scheduler::refill() {
 }
 
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
-  Slot& slot = take_slot(when);
+  if (when < now_) throw_past("Scheduler::at", when, now_);
+  const std::uint32_t index = free_slot_index();
+  Slot& slot = slots_[index];
   slot.action = nullptr;
   slot.callback = std::move(callback);
-  const auto index = static_cast<std::uint32_t>(&slot - slots_.data());
-  return EventId{std::uint64_t{slot.generation} << 32 | (index + 1u)};
+  return take_slot(index, when);
 }
 
 Scheduler::EventId Scheduler::at(Time when, Action action, void* context) {
-  Slot& slot = take_slot(when);
+  if (when < now_) throw_past("Scheduler::at", when, now_);
+  const std::uint32_t index = free_slot_index();
+  Slot& slot = slots_[index];
   slot.action = action;
   slot.context = context;
-  const auto index = static_cast<std::uint32_t>(&slot - slots_.data());
-  return EventId{std::uint64_t{slot.generation} << 32 | (index + 1u)};
+  return take_slot(index, when);
 }
 
 bool Scheduler::move(EventId id, Time when) {
@@ -146,7 +135,8 @@ void Scheduler::release(std::uint32_t index) {
   free_slot(index);
 }
 
-void Scheduler::run(const Entry& entry) {
+// Takes `entry` off the front and runs its event. Inline in the loops below.
+inline void Scheduler::run(const Entry& entry) {
   ++near_.head;
   now_ = entry.when;
   const std::uint32_t index = entry.slot;
@@ -158,11 +148,16 @@ void Scheduler::run(const Entry& entry) {
     free_slot(index);
     action(context);
   } else {
-    Callback callback = std::move(slot.callback);
-    slot.callback = nullptr;
-    free_slot(index);
-    callback();
+    run_callback(index);
   }
+}
+
+void Scheduler::run_callback(std::uint32_t index) {
+  Slot& slot = slots_[index];
+  Callback callback = std::move(slot.callback);
+  slot.callback = nullptr;
+  free_slot(index);
+  callback();
 }
 
 void Scheduler::run_until(Time until) {

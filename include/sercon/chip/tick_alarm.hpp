@@ -31,6 +31,7 @@ class TickAlarm {
 
  private:
   void schedule(Edge edge);
+  static void fire(void* alarm);  // the scheduler event (function + context)
 
   sim::Scheduler& scheduler_;
   const MclkGrid& mclk_;

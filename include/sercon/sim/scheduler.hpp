@@ -90,7 +90,19 @@ class Scheduler {
     std::uint32_t generation;
   };
 
-  Slot& take_slot(Time when);
+  // A free slot's index (the slot is still on the free list).
+  std::uint32_t free_slot_index() { return free_head_ != 0 ? free_head_ - 1 : new_slot(); }
+  std::uint32_t new_slot();
+  // Takes slot `index` for an event at `when` and queues it; returns its EventId.
+  EventId take_slot(std::uint32_t index, Time when) {
+    Slot& slot = slots_[index];
+    free_head_ = slot.next_free;
+    const std::uint32_t generation = ++slot.generation;  // odd: live
+    slot.when = when;
+    ++live_count_;
+    insert(when, index, generation);
+    return EventId{std::uint64_t{generation} << 32 | (index + 1u)};
+  }
   void free_slot(std::uint32_t index) {
     Slot& slot = slots_[index];
     ++slot.generation;  // even: stale ids and queue entries no longer match
@@ -133,10 +145,19 @@ class Scheduler {
     }
   }
   void refill();
+  // Inline: most new entries go at the back of a run that has room.
   void insert(Time when, std::uint32_t slot, std::uint32_t generation) {
-    (when <= near_limit_ ? near_ : far_).insert(Entry{when, slot, generation});
+    SortedRun& run = when <= near_limit_ ? near_ : far_;
+    if (run.head == run.tail) run.head = run.tail = 0;
+    if (run.tail < run.buffer.size() &&
+        (run.tail == run.head || when >= run.buffer[run.tail - 1].when)) {
+      run.buffer[run.tail++] = Entry{when, slot, generation};
+      return;
+    }
+    run.insert(Entry{when, slot, generation});
   }
   void run(const Entry& entry);  // takes `entry` off the front and runs its event
+  void run_callback(std::uint32_t index);
 
   Time now_ = 0;
   std::size_t live_count_ = 0;
