@@ -31,6 +31,7 @@ MclkGrid::MclkGrid(std::int64_t hz) : hz_(hz) {
   den_ = static_cast<std::uint64_t>(sim::kSecond) / g;
   std::uint64_t bound;
   narrow_ = !__builtin_mul_overflow(num_ + 1, den_, &bound);
+  if (num_ == 1) exact_edges_ = static_cast<std::uint64_t>(INT64_MAX) / den_;
 }
 
 MclkGrid MclkGrid::of_period(sim::Time period) {

@@ -46,10 +46,16 @@ class MclkGrid {
   std::uint64_t num_ = 1;  // a: f_MCLK / gcd(f_MCLK, 1e12)
   std::uint64_t den_ = 1;  // b: 1e12 / gcd(f_MCLK, 1e12); the period when num_ == 1
   bool narrow_ = false;    // (a + 1) * b fits 64 bits: the split formulas apply
+  // Edges 0..exact_edges_ are at edge * b exactly: a == 1 and the product fits (else 0:
+  // edge 0 at 0 holds for every grid).
+  std::uint64_t exact_edges_ = 0;
 };
 
 // Inline: the simulation asks for edges on nearly every event.
 inline sim::Time MclkGrid::time_of(Edge edge) const {
+  if (static_cast<std::uint64_t>(edge) <= exact_edges_) {
+    return static_cast<sim::Time>(static_cast<std::uint64_t>(edge) * den_);
+  }
   if (narrow_ && edge >= 0) {
     const auto k = static_cast<std::uint64_t>(edge);
     // floor(k * b / a) = (k / a) * b + (k % a) * b / a; (k % a) * b < a * b.
@@ -67,11 +73,11 @@ inline sim::Time MclkGrid::time_of(Edge edge) const {
 // The smallest k with k * b >= t * a: ceil(t * a / b) = (t / b) * a + ceil((t % b) * a / b).
 inline Edge MclkGrid::first_at_or_after(sim::Time t) const {
   if (t <= 0) return 0;
-  if (!narrow_) return wide_first_at_or_after(t);
   const auto u = static_cast<std::uint64_t>(t);
+  if (num_ == 1) return static_cast<Edge>(u / den_ + (u % den_ != 0));  // narrow_ too
+  if (!narrow_) return wide_first_at_or_after(t);
   const std::uint64_t q = u / den_;
   const std::uint64_t r = u % den_;
-  if (num_ == 1) return static_cast<Edge>(q + (r != 0));
   return static_cast<Edge>(q * num_ + (r * num_ + den_ - 1) / den_);
 }
 
@@ -79,9 +85,9 @@ inline Edge MclkGrid::first_at_or_after(sim::Time t) const {
 // floor(((t + 1) * a - 1) / b), which is floor(t / b) for an exact period.
 inline Edge MclkGrid::last_at_or_before(sim::Time t) const {
   if (t < 0) return -1;
-  if (!narrow_) return wide_last_at_or_before(t);
   const auto u = static_cast<std::uint64_t>(t);
-  if (num_ == 1) return static_cast<Edge>(u / den_);
+  if (num_ == 1) return static_cast<Edge>(u / den_);  // narrow_ too
+  if (!narrow_) return wide_last_at_or_before(t);
   // (t + 1) = q * b + r; t < 2^63, so t + 1 fits unsigned.
   const std::uint64_t q = (u + 1) / den_;
   const std::uint64_t r = (u + 1) % den_;
