@@ -23,15 +23,34 @@ class BusyArbiter {
   BusyArbiter(const BusyArbiter&) = delete;
   BusyArbiter& operator=(const BusyArbiter&) = delete;
 
+  // The internal accesses' marks without a bounds check, for a port that checks its words
+  // itself (Chip::TpRamPort): every word given must be < ram_words. Valid as long as the
+  // arbiter.
+  class Marks {
+   public:
+    void mark(std::uint16_t word) const { used_[word] = scheduler_->now(); }
+    void mark_run(std::uint16_t first, std::size_t count) const {
+      const sim::Time now = scheduler_->now();
+      sim::Time* used = used_ + first;
+      for (std::size_t i = 0; i < count; ++i) used[i] = now;
+    }
+
+   private:
+    friend class BusyArbiter;
+    Marks(sim::Time* used, const sim::Scheduler* scheduler) : used_(used), scheduler_(scheduler) {}
+
+    sim::Time* used_;
+    const sim::Scheduler* scheduler_;
+  };
+  Marks marks() { return Marks(last_used_.data(), &scheduler_); }
+
   // The telegram processor uses `word` (< ram_words) now, in the current MCLK period.
   // Inline: a list walk makes hundreds of these per cycle.
   void internal_access(std::uint16_t word) { last_used_.at(word) = scheduler_.now(); }
   // The same for the `count` words from `first` (all < ram_words).
   void internal_access_run(std::uint16_t first, std::size_t count) {
     if (first + count > last_used_.size()) beyond_the_ram();
-    const sim::Time now = scheduler_.now();
-    sim::Time* used = last_used_.data() + first;
-    for (std::size_t i = 0; i < count; ++i) used[i] = now;
+    marks().mark_run(first, count);
   }
   // The µP accesses `word` (< ram_words) now. Returns true when it collides and BUSYN
   // goes low.

@@ -112,6 +112,51 @@ class Chip {
   // of its work: statistics, and the fuzzer's work budget).
   std::uint64_t tp_ram_accesses() const { return tp_ram_accesses_; }
 
+  // The same port without the bounds checks, for a caller that checks every word itself
+  // (TelegramRam: one check per access instead of one per layer): each word given must be
+  // < size(). Reads, writes, BUSYN marks and the access count are those of tp_ram_read /
+  // tp_ram_write. Valid as long as the chip.
+  class TpRamPort {
+   public:
+    std::uint16_t size() const { return size_; }
+    std::uint16_t read(std::uint16_t word) const {
+      marks_.mark(word);
+      ++*accesses_;
+      return words_[word];
+    }
+    void write(std::uint16_t word, std::uint16_t value) const {
+      words_[word] = value;
+      marks_.mark(word);
+      ++*accesses_;
+    }
+    void read_run(std::uint16_t first, std::span<std::uint16_t> out) const {
+      const std::uint16_t* from = words_ + first;
+      for (std::size_t i = 0; i < out.size(); ++i) out[i] = from[i];
+      marks_.mark_run(first, out.size());
+      *accesses_ += out.size();
+    }
+    void write_run(std::uint16_t first, std::span<const std::uint16_t> words) const {
+      std::uint16_t* to = words_ + first;
+      for (std::size_t i = 0; i < words.size(); ++i) to[i] = words[i];
+      marks_.mark_run(first, words.size());
+      *accesses_ += words.size();
+    }
+
+   private:
+    friend class Chip;
+    TpRamPort(Chip& chip)
+        : words_(chip.ram_.unchecked_words()),
+          marks_(chip.busy_.marks()),
+          accesses_(&chip.tp_ram_accesses_),
+          size_(chip.ram_.size()) {}
+
+    std::uint16_t* words_;
+    BusyArbiter::Marks marks_;
+    std::uint64_t* accesses_;
+    std::uint16_t size_;
+  };
+  TpRamPort tp_ram_port() { return TpRamPort(*this); }
+
   // --- pins -----------------------------------------------------------------------------
   sim::Signal& pin(Pin p) { return pins_.at(index_of(p)); }
   const sim::Signal& pin(Pin p) const { return pins_.at(index_of(p)); }

@@ -21,6 +21,10 @@ class Dpram {
     w = static_cast<std::uint16_t>((w & ~mask) | (value & mask));
   }
   std::span<const std::uint16_t> contents() const { return words_; }
+  // The words themselves, size() of them, without a bounds check: for the telegram
+  // processor's port (Chip::TpRamPort), which checks its words itself. Valid as long as
+  // the RAM (it never resizes).
+  std::uint16_t* unchecked_words() { return words_.data(); }
 
  private:
   std::vector<std::uint16_t> words_;

@@ -23,38 +23,46 @@ class ListFault : public std::runtime_error {
 
 class TelegramRam {
  public:
-  explicit TelegramRam(Chip& chip) : chip_(chip), size_(chip.ram().size()) {}
+  explicit TelegramRam(Chip& chip) : port_(chip.tp_ram_port()), size_(port_.size()) {}
 
   std::uint16_t size() const { return size_; }
   bool contains(std::uint32_t word) const { return word < size_; }
 
+  // One bounds check here, then the chip's port unchecked (Chip::TpRamPort).
   std::uint16_t read(std::uint32_t word) {
     check(word);
-    return chip_.tp_ram_read(static_cast<std::uint16_t>(word));
+    return port_.read(static_cast<std::uint16_t>(word));
   }
   void write(std::uint32_t word, std::uint16_t value) {
     check(word);
-    chip_.tp_ram_write(static_cast<std::uint16_t>(word), value);
+    port_.write(static_cast<std::uint16_t>(word), value);
   }
   // Words first .. first + out.size() - 1, as one read() each: the words inside the RAM
   // are read (and marked for BUSYN), then a ListFault if the run reaches beyond it.
   void read_run(std::uint32_t first, std::span<std::uint16_t> out) {
+    if (first + out.size() <= size_) {
+      port_.read_run(static_cast<std::uint16_t>(first), out);
+      return;
+    }
     const std::size_t inside = words_inside(first, out.size());
-    if (inside != 0) chip_.tp_ram_read_run(static_cast<std::uint16_t>(first), out.first(inside));
+    if (inside != 0) port_.read_run(static_cast<std::uint16_t>(first), out.first(inside));
     if (inside < out.size()) throw ListFault("list structure beyond the RAM");
   }
   // The same for writes.
   void write_run(std::uint32_t first, std::span<const std::uint16_t> words) {
-    const std::size_t inside = words_inside(first, words.size());
-    if (inside != 0) {
-      chip_.tp_ram_write_run(static_cast<std::uint16_t>(first), words.first(inside));
+    if (first + words.size() <= size_) {
+      port_.write_run(static_cast<std::uint16_t>(first), words);
+      return;
     }
+    const std::size_t inside = words_inside(first, words.size());
+    if (inside != 0) port_.write_run(static_cast<std::uint16_t>(first), words.first(inside));
     if (inside < words.size()) throw ListFault("list structure beyond the RAM");
   }
   // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
   void count_error(std::uint32_t word) {
     const std::uint16_t n = read(word);
-    if (n != 0xFFFF) write(word, static_cast<std::uint16_t>(n + 1));
+    if (n != 0xFFFF)
+      port_.write(static_cast<std::uint16_t>(word), static_cast<std::uint16_t>(n + 1));
   }
 
  private:
@@ -65,7 +73,7 @@ class TelegramRam {
     if (word >= size_) throw ListFault("list structure beyond the RAM");
   }
 
-  Chip& chip_;
+  Chip::TpRamPort port_;
   std::uint16_t size_;
 };
 
