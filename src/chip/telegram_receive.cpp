@@ -88,19 +88,23 @@ sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
     // The words of this container that arrived: POS .. POS + LEN of the telegram.
     const std::size_t first = std::min<std::size_t>(pos, arrived_words_);
     const std::size_t last = std::min<std::size_t>(std::size_t{pos} + c.len, arrived_words_);
-    const std::span<const std::uint16_t> arrived = this->arrived(first, last);
     std::uint32_t buffer = data;
-    if (storage.dma) {
-      dma_words_.insert(dma_words_.end(), arrived.begin(), arrived.end());
+    // Double buffer: the data goes into the buffer VAL does not name.
+    if (!storage.dma && storage.dbuf && !val) buffer += c.len;
+    if (!storage.dma && !c.svfl) {  // straight from the frame into the buffer
+      ram_.write_run_le(buffer, arrived_bytes_ + 2 * first, last - first);
     } else {
-      // Double buffer: the data goes into the buffer VAL does not name.
-      if (storage.dbuf && !val) buffer += c.len;
-      ram_.write_run(buffer, arrived);
-    }
-    if (c.svfl) {
-      const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
-                                    static_cast<std::uint16_t>(storage.dma ? 0 : buffer)};
-      work = std::max(work, port.after_receive(use, arrived, error_free));
+      const std::span<const std::uint16_t> arrived = this->arrived(first, last);
+      if (storage.dma) {
+        dma_words_.insert(dma_words_.end(), arrived.begin(), arrived.end());
+      } else {
+        ram_.write_run(buffer, arrived);
+      }
+      if (c.svfl) {
+        const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
+                                      static_cast<std::uint16_t>(storage.dma ? 0 : buffer)};
+        work = std::max(work, port.after_receive(use, arrived, error_free));
+      }
     }
     if (c.lastdc) break;
     control = data + storage.buffer_words(c.len);

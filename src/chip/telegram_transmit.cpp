@@ -18,7 +18,7 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
   static_assert(std::endian::native == std::endian::little);
   const telegram::Storage storage = telegram::storage_of(item.word0);
   const std::size_t total = item.length;
-  words_.assign(total, 0);  // words the containers do not supply go out as 0
+  words_.resize(total);  // each word written below: by a container, or as 0 at the end
   std::size_t filled = 0;
   std::uint32_t control = item.address + telegram::kTransmitHeaderWords;
   // A container takes at least one word: more containers than RAM words is a loop.
@@ -54,6 +54,9 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
     if (c.lastdc) break;
     control = data + storage.buffer_words(c.len);
   }
+  // Words the containers did not supply go out as 0.
+  if (filled < total)
+    std::fill(words_.begin() + static_cast<std::ptrdiff_t>(filled), words_.end(), 0);
   return {reinterpret_cast<const std::uint8_t*>(words_.data()), 2 * total};
 }
 

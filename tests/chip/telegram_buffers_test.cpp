@@ -109,6 +109,40 @@ TEST_F(Loopback, DoubleBufferReceiveFillsTheOtherBufferAndFlipsVal) {
   EXPECT_EQ(chip().ram_read(kRxData + 2), 0x1111);
 }
 
+// Datasheet 4.2.2: a telegram's data comes from its transmit containers in turn, and each
+// receive container takes LEN words from word POS of the telegram; facts §2: the words go
+// little-endian on the line. Containers of more than four words, and two receive
+// containers that take the telegram's words out of order.
+TEST_F(Loopback, LongContainersGoOutInTurnAndAreStoredByPos) {
+  t = timing_16mbit();
+  Chip& m = chip();
+  program_master(m, t, kTscyc, 4);
+  words(m, 0x000, {kEnd, kTx});
+  transmit_header(m, kTx, 0x5005, 20, 7, kRx);
+  words(m, 0x044, {0x0005, 0x1111, 0x2222, 0x3333, 0x4444, 0x5555, 0x8002, 0x6666, 0x7777});
+  receive_header(m, kRx, 0x0805, 0, 7, kEnd);
+  // Container 1: LEN 5 from POS 2 at 0x057; container 2 (LASTDC): LEN 2 from POS 0 at 0x05E.
+  words(m, 0x055, {0x0005, 2, 0, 0, 0, 0, 0, 0x8002, 0, 0, 0});
+  end_marker(m, kEnd, 90);
+  enable_transmission(m);
+  ring.run_for(555'555);
+  start_master(m);
+  run_cycles(1);
+  const auto s = sent();
+  ASSERT_EQ(s.size(), 1u);
+  std::vector<std::uint8_t> line;
+  const std::array<std::uint16_t, 7> data{0x1111, 0x2222, 0x3333, 0x4444, 0x5555, 0x6666, 0x7777};
+  for (std::uint16_t w : data) {
+    line.push_back(static_cast<std::uint8_t>(w));
+    line.push_back(static_cast<std::uint8_t>(w >> 8));
+  }
+  EXPECT_EQ(s[0].data, line);
+  EXPECT_EQ(m.ram_read(kRx), 0x0C05);  // VAL set, no RERR
+  for (std::uint16_t i = 0; i < 5; ++i) EXPECT_EQ(m.ram_read(0x057 + i), data[2 + i]) << i;
+  EXPECT_EQ(m.ram_read(0x05E), 0x1111);
+  EXPECT_EQ(m.ram_read(0x05F), 0x2222);
+}
+
 TEST_F(Loopback, SendOnceGoesOutOnceAndClearsEn) {
   // Facts §5: 0x4800 + address "send once"; delta spec 2.10.1: "If EN = 1, then the value
   // EN = 0 must be written to the DPR".

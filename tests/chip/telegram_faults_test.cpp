@@ -78,6 +78,25 @@ TEST_F(BadList, ContainerBeyondTheRamSendsNothing) {
   EXPECT_EQ(tp().list_faults(), 2u);
 }
 
+// "For a receive, its header not updated" (docs/telegram-processing.md, "Bad lists"): the
+// receive buffer's second word lies beyond the RAM. The word inside the RAM is stored
+// before the fault is found (TelegramRam: a run is done word by word up to the RAM's end).
+TEST_F(BadList, ReceiveBufferBeyondTheRamLeavesTheHeaderAlone) {
+  words(chip(), 0, {0x040, 0x040});
+  transmit_header(chip(), 0x040, 0x5005, 20, 2, 0x7F8);  // to itself, 1 µs later
+  words(chip(), 0x044, {0x8002, 0x1111, 0x2222});
+  receive_header(chip(), 0x7F8, 0x0805, 0, 2, 0x060);  // ACHK, address 5
+  words(chip(), 0x7FD, {0x8002, 0});                   // data at 0x7FF and 0x800
+  end_marker(chip(), 0x060, 90);
+  start();
+  run_cycles(2);
+  EXPECT_EQ(list_telegrams(), 2u);
+  EXPECT_EQ(tp().list_faults(), 2u);
+  EXPECT_EQ(chip().ram_read(0x7F8), 0x0805);  // neither VAL nor RERR
+  EXPECT_EQ(chip().ram_read(0x7FC), 0);       // NERR
+  EXPECT_EQ(chip().ram_read(0x7FF), 0x1111);
+}
+
 TEST_F(BadList, KindTenIsNoEndMarker) {
   words(chip(), 0, {0x040, 0x040});
   transmit_header(chip(), 0x040, 0x5005, 20, 1, 0x050);

@@ -30,9 +30,43 @@ class BusyArbiter {
    public:
     void mark(std::uint16_t word) const { used_[word] = scheduler_->now(); }
     void mark_run(std::uint16_t first, std::size_t count) const {
+      mark_run(first, count, [](std::size_t) {});
+    }
+    // Marks the run and calls each(i) for its words i = 0 .. count - 1, in one pass. Runs
+    // are mostly a few words (container heads, short data): up to 4 go in straight-line
+    // code, where a vectorised loop's set-up would cost more than the words.
+    template <typename Each>
+    void mark_run(std::uint16_t first, std::size_t count, Each each) const {
       const sim::Time now = scheduler_->now();
       sim::Time* used = used_ + first;
-      for (std::size_t i = 0; i < count; ++i) used[i] = now;
+      const auto word = [&](std::size_t i) {
+        used[i] = now;
+        each(i);
+      };
+      switch (count) {
+        case 0:
+          return;
+        case 1:
+          word(0);
+          return;
+        case 2:
+          word(0);
+          word(1);
+          return;
+        case 3:
+          word(0);
+          word(1);
+          word(2);
+          return;
+        case 4:
+          word(0);
+          word(1);
+          word(2);
+          word(3);
+          return;
+        default:
+          for (std::size_t i = 0; i < count; ++i) word(i);
+      }
     }
 
    private:

@@ -21,7 +21,9 @@
 //     its scheduler runs on.
 #pragma once
 
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <span>
 #include <type_traits>
@@ -131,15 +133,21 @@ class Chip {
     }
     void read_run(std::uint16_t first, std::span<std::uint16_t> out) const {
       const std::uint16_t* from = words_ + first;
-      for (std::size_t i = 0; i < out.size(); ++i) out[i] = from[i];
-      marks_.mark_run(first, out.size());
+      marks_.mark_run(first, out.size(), [&](std::size_t i) { out[i] = from[i]; });
       *accesses_ += out.size();
     }
     void write_run(std::uint16_t first, std::span<const std::uint16_t> words) const {
       std::uint16_t* to = words_ + first;
-      for (std::size_t i = 0; i < words.size(); ++i) to[i] = words[i];
-      marks_.mark_run(first, words.size());
+      marks_.mark_run(first, words.size(), [&](std::size_t i) { to[i] = words[i]; });
       *accesses_ += words.size();
+    }
+    // write_run of `count` words given as little-endian byte pairs (a telegram's data as
+    // it came off the line).
+    void write_run_le(std::uint16_t first, const std::uint8_t* bytes, std::size_t count) const {
+      static_assert(std::endian::native == std::endian::little);
+      std::uint16_t* to = words_ + first;
+      marks_.mark_run(first, count, [&](std::size_t i) { std::memcpy(to + i, bytes + 2 * i, 2); });
+      *accesses_ += count;
     }
 
    private:

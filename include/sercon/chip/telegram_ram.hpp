@@ -58,6 +58,16 @@ class TelegramRam {
     if (inside != 0) port_.write_run(static_cast<std::uint16_t>(first), words.first(inside));
     if (inside < words.size()) throw ListFault("list structure beyond the RAM");
   }
+  // The same for `count` words given as little-endian byte pairs.
+  void write_run_le(std::uint32_t first, const std::uint8_t* bytes, std::size_t count) {
+    if (first + count <= size_) {
+      port_.write_run_le(static_cast<std::uint16_t>(first), bytes, count);
+      return;
+    }
+    const std::size_t inside = words_inside(first, count);
+    if (inside != 0) port_.write_run_le(static_cast<std::uint16_t>(first), bytes, inside);
+    if (inside < count) throw ListFault("list structure beyond the RAM");
+  }
   // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
   void count_error(std::uint32_t word) {
     const std::uint16_t n = read(word);
