@@ -170,15 +170,6 @@ void TelegramList::fire_end() {
   client_.end_reached(item_);
 }
 
-TelegramList::Match TelegramList::would_take(sim::Time start, std::uint8_t address) const {
-  if (state_ != State::Receive) return Match::NotExpected;
-  if (item_.has(telegram::kTchk) && (start < window_opens_ || start >= window_closes_)) {
-    return Match::NotExpected;
-  }
-  if (item_.has(telegram::kAchk) && address != item_.adr()) return Match::OtherAddress;
-  return Match::Accepted;
-}
-
 TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, ListItem& item) {
   const Match match = would_take(start, address);
   if (match != Match::Accepted) return match;

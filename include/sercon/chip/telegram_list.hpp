@@ -77,8 +77,16 @@ class TelegramList {
   // A telegram whose opening flag began at `start` brings `address`: is it the waiting
   // receive header's? Accepted: `item` is that header, and the walk has moved on.
   Match offer(sim::Time start, std::uint8_t address, ListItem& item);
-  // What offer() would answer now, without taking the telegram.
-  Match would_take(sim::Time start, std::uint8_t address) const;
+  // What offer() would answer now, without taking the telegram. Inline: the receiver asks
+  // at every telegram start.
+  Match would_take(sim::Time start, std::uint8_t address) const {
+    if (state_ != State::Receive) return Match::NotExpected;
+    if (item_.has(telegram::kTchk) && (start < window_opens_ || start >= window_closes_)) {
+      return Match::NotExpected;
+    }
+    if (item_.has(telegram::kAchk) && address != item_.adr()) return Match::OtherAddress;
+    return Match::Accepted;
+  }
   // A receive header waits: only then can offer() answer anything but NotExpected.
   bool waits_for_telegram() const { return state_ == State::Receive; }
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
