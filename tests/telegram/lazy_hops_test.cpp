@@ -273,10 +273,10 @@ TEST(LazyHops, AListenerJoiningATxdGetsTheSameLine) {
 }
 
 // Everything above at once, at random times on random nodes, for a handful of seeds (slave 3
-// quiet in every other one): RECACT
-// reads, RECACTN watched and let go, REPON off and on, TxD2 switched on and off with a
-// listener joining and leaving, fibres broken and restored. Whatever the actions do to the
-// ring, lazy hops must not change what anyone sees.
+// quiet in every other one): RECACT reads, RECACTN watched and let go, REPON off and on,
+// TxD2 switched on and off with a listener joining and leaving, the bit rate changed and
+// back, fibres broken and restored. Whatever the actions do to the ring, lazy hops must not
+// change what anyone sees.
 class LazyHopsRandom : public ::testing::TestWithParam<std::uint32_t> {};
 
 void random_actions(RingRun& r, std::uint32_t seed) {
@@ -291,7 +291,7 @@ void random_actions(RingRun& r, std::uint32_t seed) {
         base + std::uniform_int_distribution<sim::Time>(sim::kMicrosecond, span - 1)(rng);
     const std::size_t node = pick(kSlaves + 1);
     ring::Ring& ring = r.cp4.ring();
-    switch (pick(6)) {
+    switch (pick(7)) {
       case 0:
         r.cp4.scheduler().at(at, [&r, node] {
           const FieldRef recact = r.cp4.ring().serial(node).fields().recact;
@@ -335,6 +335,17 @@ void random_actions(RingRun& r, std::uint32_t seed) {
         r.cp4.scheduler().at(at + std::uniform_int_distribution<sim::Time>(1, 50'000'000)(rng),
                              [&r, node] { r.cp4.ring().serial(node).disconnect_txd(2); });
         break;
+      case 5: {  // the bit rate switched to 2 Mbit/s (0x01 ENTSBAUD, SWBAUD16, SWBAUD), and back
+        const auto flip = [&r, node] {
+          Chip& c = r.cp4.ring().node(node);
+          c.reg_write(kSerMode, static_cast<std::uint16_t>(c.reg_read(kSerMode) ^
+                                                           (kEntsbaud | kSwbaud16 | kSwbaud)));
+        };
+        r.cp4.scheduler().at(at, flip);
+        r.cp4.scheduler().at(at + std::uniform_int_distribution<sim::Time>(1, 30'000'000)(rng),
+                             flip);
+        break;
+      }
       default: {
         ring::Fibre& f = ring.fibre(node);
         f.break_at(at);
