@@ -99,10 +99,13 @@ bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
     if (last.segment.is_burst && b.start < last.cut) return false;
   }
   if (wants_a_report(b)) return false;
+  // A copy first: `b` may live in the history of a fibre this hop books into (a node whose
+  // TxD comes back to its own RxD), which may move it.
+  LazyBurst kept{b, leaves};
   LineListener* next = nullptr;
   LineBurst out;
-  if (!repeater.pass_through(b, leaves, next, out)) return false;
-  lazy_.push_back(LazyBurst{b, leaves});
+  if (!repeater.pass_through(kept.burst, leaves, next, out)) return false;
+  lazy_.push_back(std::move(kept));
   ++lazy_hops_taken_;
   prune_lazy(now);
   const sim::ScopedCount link(chain_depth);
@@ -111,10 +114,11 @@ bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
 }
 
 // What consider() would plan for the burst's frames in the telegram processor's present
-// state (a frame without a whole address counts as wanted: the full path sorts it out).
+// state. With one handler only, consider() also marks the other kind of report done for
+// good, which a later handler would see: that is left to the full path.
 bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   if (!on_start_ && !on_telegram_) return false;
-  if (interest_ == nullptr) return true;
+  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
   for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
     if (on_start_ && interest_->wants_start(start, f.address)) return true;
@@ -135,7 +139,13 @@ void SerialReceiver::prune_lazy(sim::Time now) {
 
 void SerialReceiver::absorb_lazy() {
   if (lazy_.empty()) return;
-  // Nothing here calls out of the node, so lazy_ stays as it is while it is walked.
+  // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
+  // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
+  // node does not throw again at every later absorb.
+  struct LetGo {
+    sim::VectorQueue<LazyBurst>& lazy;
+    ~LetGo() { lazy.clear(); }
+  } let_go{lazy_};
   for (const LazyBurst& lazy : lazy_) {
     const LineBurst& b = lazy.burst;
     // Every other way into the timeline absorbs first: a later entry here is a bug.
@@ -152,7 +162,6 @@ void SerialReceiver::absorb_lazy() {
     take(e);
     unit_.repeater().absorb(b, lazy.leaves);
   }
-  lazy_.clear();
 }
 
 void SerialReceiver::announce(RxdSegment segment) {
