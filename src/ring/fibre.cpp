@@ -126,7 +126,11 @@ void Fibre::tell_far_end() {
                               c.burst.bit_period);
     }
   }
-  for (; next < history_.size(); ++next) pass_on(history_[next]);  // still on their way
+  // Still on their way. Taken out first: in a loop (a node's TxD back to its own RxD) what is
+  // passed on comes back into this history while it is walked.
+  const std::vector<Change> on_their_way(history_.begin() + static_cast<std::ptrdiff_t>(next),
+                                         history_.end());
+  for (const Change& c : on_their_way) pass_on(c);
 }
 
 void Fibre::break_now() {
