@@ -18,6 +18,11 @@ constexpr sim::Time kNever = LazyPin::kNever;
 // 255 nodes needs, far less than the stack allows.
 constexpr int kMaxChain = 600;
 thread_local int chain_depth = 0;  // receivers in the chain now
+// A receiver holds what is in force and what is announced for later: a handful of telegrams
+// in a real ring. A ring where every node repeats, the master too, re-announces what circles
+// it each time an own telegram is inserted, and that can grow without end; past this many an
+// error names it instead of a hang.
+constexpr std::size_t kMaxTimeline = 4096;
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
@@ -173,6 +178,13 @@ void SerialReceiver::announce(RxdSegment segment) {
   }
   const bool changed = supersede(at);
   prune();
+  if (timeline_.size() >= kMaxTimeline) {
+    throw std::runtime_error(
+        "RxD: " + std::to_string(timeline_.size()) + " changes announced ahead at " +
+        std::to_string(now) +
+        " ps: telegrams circle a ring where every node repeats (REPON on everywhere, the "
+        "master too); switch one repeater off, as Ring::switch_on_lines does for the master");
+  }
   Entry& e = timeline_.emplace_back();
   e.cut = segment.is_burst ? segment.burst_end() : at;
   e.serial = next_serial_++;

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -324,6 +325,31 @@ TEST(LazyHops, ARingWhereEveryNodeRepeatsIsTheSame) {
   const std::vector<std::string> lazy = every_node_repeats(true);
   EXPECT_GT(lazy.size(), 1000u);
   expect_same(lazy, every_node_repeats(false));
+}
+
+// The same ring, and slave 1 inserts an own telegram: what circles is re-announced at every
+// insertion and grows without end in the model (not on the fibre). That is an error naming
+// the cause, not a hang (docs/serial-and-ring.md, "Depth guard"; review).
+TEST(LazyHops, AnOwnTelegramInARingWhereEveryNodeRepeatsIsAnErrorNotAHang) {
+  sim::Scheduler s;
+  RingOptions o;
+  o.fibre_lengths_m = {1000.0, 1000.0, 1000.0};
+  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 2, o);
+  ring.switch_on_lines();
+  set_bits(ring.master(), ring.serial(0).fields().repon, true);
+  s.run_until(1000 * kBit);
+  const Time at = s.now() + 10 * kBit;
+  ring.serial(0).rxd().line_burst(LineBurst{at, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
+  s.at(at + 5000 * kBit, [&] {
+    ring.serial(1).send(ring.serial(1).next_bit_edge(s.now() + 100 * kBit), 0x01,
+                        std::vector<std::uint8_t>{1, 0, 0, 0});
+  });
+  try {
+    s.run_until(at + 8000 * kBit);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("every node repeats"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
