@@ -36,6 +36,49 @@ void set_bits(chip::Chip& c, const chip::FieldRef& f, bool on) {
   c.reg_write(f.address, static_cast<std::uint16_t>(on ? v | f.mask : v & ~f.mask));
 }
 
+// One chip at 16 Mbit/s with its repeater on and TxD1 driven (0x02 TXOE bit 0, TXLIGHT).
+struct RepeatingChip {
+  explicit RepeatingChip(bool lazy) : c(s, config_at_mbit(16)), u(*c.unit<chip::SerialUnit>()) {
+    u.set_lazy_hops(lazy);
+    set_bits(c, u.fields().repon, true);
+    c.reg_write(0x02, 0x0041);
+  }
+  // RxD idle after 1000 bit times, then `n` telegrams announced at once, `spacing` bit times
+  // apart from `lead` bit times later; returns when the first begins.
+  Time idle_then_telegrams(int n, Time spacing, Time lead) {
+    s.run_until(1000 * kBit);
+    u.rxd().line_condition(s.now(), LineCondition::Idle, kBit);
+    s.run_until(s.now() + lead * kBit);
+    const Time base = s.now() + 10 * kBit;
+    for (int i = 0; i < n; ++i) {
+      u.rxd().line_burst(
+          LineBurst{base + i * spacing * kBit, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
+    }
+    return base;
+  }
+
+  sim::Scheduler s;
+  chip::Chip c;
+  chip::SerialUnit& u;
+};
+
+// Master + 2 slaves on 1 km fibres, every repeater on, the master's too.
+struct AllRepeatRing {
+  explicit AllRepeatRing(bool lazy)
+      : ring(s, config_at_mbit(16), config_at_mbit(16), 2, options()) {
+    ring.switch_on_lines();
+    for (std::size_t i = 0; i < 3; ++i) ring.serial(i).set_lazy_hops(lazy);
+    set_bits(ring.master(), ring.serial(0).fields().repon, true);
+  }
+  static RingOptions options() {
+    RingOptions o;
+    o.fibre_lengths_m = {1000.0, 1000.0, 1000.0};
+    return o;
+  }
+  sim::Scheduler s;
+  Ring ring;
+};
+
 std::string event_text(const testing::Recorder::Event& e) {
   std::string s = std::to_string(e.now) + (e.burst ? " burst " : " condition ") +
                   std::string(chip::to_string(e.condition)) + " at " + std::to_string(e.at) +
@@ -76,14 +119,12 @@ enum class Action {
 constexpr int kActions = 15;
 
 std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
-  sim::Scheduler s;
-  chip::Chip c(s, config_at_mbit(16));
-  chip::SerialUnit& u = *c.unit<chip::SerialUnit>();
-  u.set_lazy_hops(lazy);
+  RepeatingChip node(lazy);
+  sim::Scheduler& s = node.s;
+  chip::Chip& c = node.c;
+  chip::SerialUnit& u = node.u;
   std::vector<std::string> trace;
   testing::Recorder out1(s), out2(s);
-  set_bits(c, u.fields().repon, true);
-  c.reg_write(0x02, 0x0041);  // TXOE bit 0, TXLIGHT
   Fibre f(s, 10.0);
   f.connect(out1);
   u.connect_txd(1, f.input());
@@ -94,14 +135,7 @@ std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
                       std::to_string(static_cast<int>(l)));
     });
   }
-  s.run_until(1000 * kBit);
-  u.rxd().line_condition(s.now(), LineCondition::Idle, kBit);
-  s.run_until(s.now() + 100 * kBit);
-  const Time base = s.now() + 10 * kBit;
-  for (int i = 0; i < 20; ++i) {
-    u.rxd().line_burst(
-        LineBurst{base + i * 150 * kBit, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
-  }
+  const Time base = node.idle_then_telegrams(20, 150, 100);
   s.at(base + when_bits * kBit, [&] {
     const auto flip = [&c](std::uint8_t a, std::uint16_t m) {
       c.reg_write(a, static_cast<std::uint16_t>(c.regs().value(a) ^ m));
@@ -192,12 +226,10 @@ INSTANTIATE_TEST_SUITE_P(Actions, LazyHopsOneNode,
 // that lap is lazy and books into the same history. It used to read the burst after the
 // history had moved it (review). `k` changes before vary how full the history is.
 std::vector<std::string> loop_of_one(int k, bool lazy) {
-  sim::Scheduler s;
-  chip::Chip c(s, config_at_mbit(16));
-  chip::SerialUnit& u = *c.unit<chip::SerialUnit>();
-  u.set_lazy_hops(lazy);
-  set_bits(c, u.fields().repon, true);
-  c.reg_write(0x02, 0x0041);
+  RepeatingChip node(lazy);
+  sim::Scheduler& s = node.s;
+  chip::Chip& c = node.c;
+  chip::SerialUnit& u = node.u;
   Fibre f(s, 10000.0);  // 50 µs = 800 bits: a lap is longer than the telegram
   u.connect_txd(1, f.input());
   f.connect(u.rxd());
@@ -232,22 +264,12 @@ TEST(LazyHops, ANodeThatHearsItselfPassesItsBurstRoundSafely) {
 // what it told came back into it, and never returned (review).
 TEST(LazyHops, ConnectingALoopWhileTelegramsAreOnTheirWayReturns) {
   for (const bool lazy : {true, false}) {
-    sim::Scheduler s;
-    chip::Chip c(s, config_at_mbit(16));
-    chip::SerialUnit& u = *c.unit<chip::SerialUnit>();
-    u.set_lazy_hops(lazy);
-    set_bits(c, u.fields().repon, true);
-    c.reg_write(0x02, 0x0041);
+    RepeatingChip node(lazy);
+    sim::Scheduler& s = node.s;
+    chip::SerialUnit& u = node.u;
     Fibre f(s, 10000.0);
     u.connect_txd(1, f.input());
-    s.run_until(1000 * kBit);
-    u.rxd().line_condition(s.now(), LineCondition::Idle, kBit);
-    s.run_until(s.now() + 10 * kBit);
-    const Time base = s.now() + 10 * kBit;
-    for (int i = 0; i < 3; ++i) {
-      u.rxd().line_burst(
-          LineBurst{base + i * 100 * kBit, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
-    }
+    const Time base = node.idle_then_telegrams(3, 100, 10);
     s.run_until(base + 310 * kBit);
     f.connect(u.rxd());
     s.run_until(s.now() + 2000 * kBit);
@@ -260,12 +282,9 @@ TEST(LazyHops, ConnectingALoopWhileTelegramsAreOnTheirWayReturns) {
 // handler, so the full path marks its detection report done for good; a handler installed
 // before the detection must hear the same either way (review).
 int told_after_late_handler(bool lazy) {
-  sim::Scheduler s;
-  chip::Chip c(s, config_at_mbit(16));
-  chip::SerialUnit& u = *c.unit<chip::SerialUnit>();
-  u.set_lazy_hops(lazy);
-  set_bits(c, u.fields().repon, true);
-  c.reg_write(0x02, 0x0041);
+  RepeatingChip node(lazy);
+  sim::Scheduler& s = node.s;
+  chip::SerialUnit& u = node.u;
   testing::Recorder sink(s);
   Fibre f(s, 10.0);
   f.connect(sink);
@@ -291,13 +310,9 @@ TEST(LazyHops, AHandlerInstalledWhileATelegramPassesHearsTheSame) {
 // lazy hops and the depth guard's deferred forwards (docs "Depth guard"); the line at the
 // master's RxD is the same either way.
 std::vector<std::string> every_node_repeats(bool lazy) {
-  sim::Scheduler s;
-  RingOptions o;
-  o.fibre_lengths_m = {1000.0, 1000.0, 1000.0};
-  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 2, o);
-  ring.switch_on_lines();
-  for (std::size_t i = 0; i < 3; ++i) ring.serial(i).set_lazy_hops(lazy);
-  set_bits(ring.master(), ring.serial(0).fields().repon, true);
+  AllRepeatRing all(lazy);
+  sim::Scheduler& s = all.s;
+  Ring& ring = all.ring;
   struct Tap final : chip::LineListener {
     Tap(sim::Scheduler& sch, chip::LineListener& to) : rec(sch), to_(to) {}
     void line_condition(Time at, LineCondition c, Time p) override {
@@ -331,12 +346,9 @@ TEST(LazyHops, ARingWhereEveryNodeRepeatsIsTheSame) {
 // insertion and grows without end in the model (not on the fibre). That is an error naming
 // the cause, not a hang (docs/serial-and-ring.md, "Depth guard"; review).
 TEST(LazyHops, AnOwnTelegramInARingWhereEveryNodeRepeatsIsAnErrorNotAHang) {
-  sim::Scheduler s;
-  RingOptions o;
-  o.fibre_lengths_m = {1000.0, 1000.0, 1000.0};
-  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 2, o);
-  ring.switch_on_lines();
-  set_bits(ring.master(), ring.serial(0).fields().repon, true);
+  AllRepeatRing all(true);
+  sim::Scheduler& s = all.s;
+  Ring& ring = all.ring;
   s.run_until(1000 * kBit);
   const Time at = s.now() + 10 * kBit;
   ring.serial(0).rxd().line_burst(LineBurst{at, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
