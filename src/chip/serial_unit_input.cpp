@@ -1,6 +1,7 @@
 #include "sercon/chip/serial_unit_input.hpp"
 
 #include <stdexcept>
+#include <string>
 
 #include "sercon/chip/line_edges.hpp"
 
@@ -35,6 +36,12 @@ RxdSegment RxdSegment::of(const LineBurst& burst) {
 
 sim::Time RxdSegment::burst_end() const {
   return since + static_cast<sim::Time>(bits ? bits->size() : 0) * period;
+}
+
+void expect_absorbed_in_order(std::string_view line, sim::Time last, sim::Time at) {
+  if (last < at) return;
+  throw std::logic_error(std::string(line) + ": a lazy burst at " + std::to_string(at) +
+                         " ps is absorbed after a change at " + std::to_string(last) + " ps");
 }
 
 std::uint64_t edges_before(const RxdSegment& s, sim::Time t) {

@@ -125,11 +125,7 @@ bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineB
 }
 
 void TxdOutputs::absorb(const LineBurst& burst) {
-  if (line_.back().since >= burst.start) {  // as in the receiver
-    throw std::logic_error("TxD: a lazy burst at " + std::to_string(burst.start) +
-                           " ps is absorbed after a change at " +
-                           std::to_string(line_.back().since) + " ps");
-  }
+  expect_absorbed_in_order("TxD", line_.back().since, burst.start);
   prune();
   line_.push_back(RxdSegment::of(burst));
 }

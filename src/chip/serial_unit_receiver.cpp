@@ -23,6 +23,9 @@ thread_local int chain_depth = 0;  // receivers in the chain now
 // it each time an own telegram is inserted, and that can grow without end; past this many an
 // error names it instead of a hang.
 constexpr std::size_t kMaxTimeline = 4096;
+
+// The receiver's pipeline starts 5.5 bit times after what it reports (facts §5 t_start).
+sim::Time five_and_a_half_bits(sim::Time period) { return (11 * period + 1) / 2; }
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
@@ -126,8 +129,9 @@ bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
   for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
-    if (on_start_ && interest_->wants_start(start, f.address)) return true;
-    if (on_telegram_ && interest_->wants_telegram(start, f)) return true;
+    if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+      return true;
+    }
   }
   return false;
 }
@@ -153,20 +157,20 @@ void SerialReceiver::absorb_lazy() {
   } let_go{lazy_};
   for (const LazyBurst& lazy : lazy_) {
     const LineBurst& b = lazy.burst;
-    // Every other way into the timeline absorbs first: a later entry here is a bug.
-    if (timeline_.back().segment.since >= b.start) {
-      throw std::logic_error("RxD: a lazy burst at " + std::to_string(b.start) +
-                             " ps is absorbed after a change at " +
-                             std::to_string(timeline_.back().segment.since) + " ps");
-    }
+    expect_absorbed_in_order("RxD", timeline_.back().segment.since, b.start);
     prune();
-    Entry& e = timeline_.emplace_back();
-    e.cut = b.end();
-    e.serial = next_serial_++;
-    e.segment = RxdSegment::of(b);
-    take(e);
+    take(append(RxdSegment::of(b)));
     unit_.repeater().absorb(b, lazy.leaves);
   }
+}
+
+// A new last entry (the caller has dropped what it supersedes), not yet taken.
+SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
+  Entry& e = timeline_.emplace_back();
+  e.cut = segment.is_burst ? segment.burst_end() : segment.since;
+  e.serial = next_serial_++;
+  e.segment = std::move(segment);
+  return e;
 }
 
 void SerialReceiver::announce(RxdSegment segment) {
@@ -185,10 +189,7 @@ void SerialReceiver::announce(RxdSegment segment) {
         " ps: telegrams circle a ring where every node repeats (REPON on everywhere, the "
         "master too); switch one repeater off, as Ring::switch_on_lines does for the master");
   }
-  Entry& e = timeline_.emplace_back();
-  e.cut = segment.is_burst ? segment.burst_end() : at;
-  e.serial = next_serial_++;
-  e.segment = std::move(segment);
+  Entry& e = append(std::move(segment));
   if (!unit_.running()) return;
   take(e);
   if (changed) {
@@ -401,11 +402,11 @@ void SerialReceiver::refresh_rate() {
 // --- reports to the telegram processor ---------------------------------------------------
 
 sim::Time SerialReceiver::report_lag(sim::Time period) const {
-  return (11 * period + 1) / 2 + 4 * unit_.chip().mclk_period();
+  return five_and_a_half_bits(period) + 4 * unit_.chip().mclk_period();
 }
 
 sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
-  const sim::Time half_bits = (11 * period + 1) / 2;  // 5.5 bit times
+  const sim::Time half_bits = five_and_a_half_bits(period);
   // Three MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
   const MclkGrid& mclk = unit_.chip().mclk();
   return mclk.time_of(mclk.first_at_or_after(t + half_bits) + 3);

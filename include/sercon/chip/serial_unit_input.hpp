@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
@@ -47,6 +48,12 @@ inline bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at
 inline void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now) {
   while (line.size() > 1 && line[1].since <= now) line.pop_front();
 }
+
+// Lazy hops (docs/serial-and-ring.md): a lazy burst is booked into `line` (a name for the
+// message) after the change announced last there, at `last`; every other way into the line
+// takes lazy bursts in first, so one at or before `last` is a missed trigger:
+// std::logic_error.
+void expect_absorbed_in_order(std::string_view line, sim::Time last, sim::Time at);
 
 // Edges in [since, t): Idle has one every 8 bit times, ZeroBits one every bit time, both
 // beginning with an edge at `since`; a burst has its bits' edges, then its trailing fill.

@@ -117,6 +117,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   };
 
   void announce(RxdSegment segment);
+  Entry& append(RxdSegment segment);
   bool try_lazy_hop(const LineBurst& burst);  // true: passed on lazily
   bool wants_a_report(const LineBurst& burst) const;
   void prune_lazy(sim::Time now);
