@@ -40,33 +40,19 @@ class TelegramRam {
   // Words first .. first + out.size() - 1, as one read() each: the words inside the RAM
   // are read (and marked for BUSYN), then a ListFault if the run reaches beyond it.
   void read_run(std::uint32_t first, std::span<std::uint16_t> out) {
-    if (first + out.size() <= size_) {
-      port_.read_run(static_cast<std::uint16_t>(first), out);
-      return;
-    }
-    const std::size_t inside = words_inside(first, out.size());
-    if (inside != 0) port_.read_run(static_cast<std::uint16_t>(first), out.first(inside));
-    if (inside < out.size()) throw ListFault("list structure beyond the RAM");
+    in_ram(first, out.size(),
+           [&](std::size_t n) { port_.read_run(static_cast<std::uint16_t>(first), out.first(n)); });
   }
   // The same for writes.
   void write_run(std::uint32_t first, std::span<const std::uint16_t> words) {
-    if (first + words.size() <= size_) {
-      port_.write_run(static_cast<std::uint16_t>(first), words);
-      return;
-    }
-    const std::size_t inside = words_inside(first, words.size());
-    if (inside != 0) port_.write_run(static_cast<std::uint16_t>(first), words.first(inside));
-    if (inside < words.size()) throw ListFault("list structure beyond the RAM");
+    in_ram(first, words.size(), [&](std::size_t n) {
+      port_.write_run(static_cast<std::uint16_t>(first), words.first(n));
+    });
   }
   // The same for `count` words given as little-endian byte pairs.
   void write_run_le(std::uint32_t first, const std::uint8_t* bytes, std::size_t count) {
-    if (first + count <= size_) {
-      port_.write_run_le(static_cast<std::uint16_t>(first), bytes, count);
-      return;
-    }
-    const std::size_t inside = words_inside(first, count);
-    if (inside != 0) port_.write_run_le(static_cast<std::uint16_t>(first), bytes, inside);
-    if (inside < count) throw ListFault("list structure beyond the RAM");
+    in_ram(first, count,
+           [&](std::size_t n) { port_.write_run_le(static_cast<std::uint16_t>(first), bytes, n); });
   }
   // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
   void count_error(std::uint32_t word) {
@@ -76,8 +62,14 @@ class TelegramRam {
   }
 
  private:
-  std::size_t words_inside(std::uint32_t first, std::size_t count) const {
-    return first >= size_ ? 0 : std::min<std::size_t>(count, size_ - first);
+  // A run of `count` words from `first`: `part(n)` on its first n words, those inside the
+  // RAM (all of them, the usual case, in one call), then a ListFault if some are beyond.
+  template <class Part>
+  void in_ram(std::uint32_t first, std::size_t count, Part part) {
+    if (first + count <= size_) return part(count);
+    const std::size_t inside = first >= size_ ? 0 : std::min<std::size_t>(count, size_ - first);
+    if (inside != 0) part(inside);
+    if (inside < count) throw ListFault("list structure beyond the RAM");
   }
   void check(std::uint32_t word) const {
     if (word >= size_) throw ListFault("list structure beyond the RAM");
