@@ -148,6 +148,7 @@ void SerialReceiver::prune_lazy(sim::Time now) {
 
 void SerialReceiver::absorb_lazy() {
   if (lazy_.empty()) return;
+  prune_lazy(unit_.chip().scheduler().now());  // a burst over by now would only be pruned
   // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.
@@ -451,9 +452,9 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
 }
 
 void SerialReceiver::plan_reports() {
-  absorb_lazy();
   sim::Scheduler& s = unit_.chip().scheduler();
   const sim::Time now = s.now();
+  if (lazy_report_due(now)) absorb_lazy();
   Report best{kNever, 0, 0, false};
   if (unit_.running() && (on_start_ || on_telegram_)) {
     for (Entry& e : timeline_) {
@@ -479,6 +480,28 @@ void SerialReceiver::plan_reports() {
   if (best.when == kNever) return;
   report_event_ = s.at(
       best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+}
+
+// Whether the lazy bursts must be absorbed for a plan: one of them has a report the telegram
+// processor wants now and whose time may be still to come. Otherwise the full path would plan
+// none of theirs now (a report not wanted stays eligible, and is asked again at the next
+// plan, as here), so they can stay lazy: a node that fires a report per telegram it reads
+// need not book each telegram it passes on. With one handler only, the full path marks
+// the other kind done for good: that is left to it.
+bool SerialReceiver::lazy_report_due(sim::Time now) const {
+  if (lazy_.empty()) return false;
+  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
+  for (const LazyBurst& lazy : lazy_) {
+    const LineBurst& b = lazy.burst;
+    if (b.end() + report_lag(b.bit_period) < now) continue;  // its reports are past
+    for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+      const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
+      if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 void SerialReceiver::consider(Entry& e) {

@@ -18,6 +18,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
 #include "sercon/ring/fibre.hpp"
 #include "sercon/ring/ring.hpp"
 
@@ -304,6 +305,25 @@ int told_after_late_handler(bool lazy) {
 
 TEST(LazyHops, AHandlerInstalledWhileATelegramPassesHearsTheSame) {
   EXPECT_EQ(told_after_late_handler(true), told_after_late_handler(false));
+}
+
+// docs/serial-and-ring.md, "Absorbing": a plan of reports (here the telegram processor's
+// interest changed) that wants none of the waiting bursts' reports leaves them lazy; a read
+// of the line still absorbs them.
+TEST(LazyHops, APlanWantingNoneOfTheirReportsLeavesTheBurstsLazy) {
+  RepeatingChip node(true);
+  testing::Recorder sink(node.s);
+  Fibre f(node.s, 10.0);
+  f.connect(sink);
+  node.u.connect_txd(1, f.input());
+  const Time base = node.idle_then_telegrams(20, 150, 100);
+  node.s.run_until(base + 400 * kBit);
+  const std::size_t waiting = node.u.receiver().lazy_bursts_waiting();
+  ASSERT_GT(waiting, 1u);
+  node.u.interest_changed();
+  EXPECT_EQ(node.u.receiver().lazy_bursts_waiting(), waiting);
+  (void)node.u.receiver().input();
+  EXPECT_EQ(node.u.receiver().lazy_bursts_waiting(), 0u);
 }
 
 // A ring where every node repeats, the master too: a telegram circles it for good, through

@@ -60,6 +60,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void set_lazy_hops(bool on);
   void absorb_lazy();
   std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
+  std::size_t lazy_bursts_waiting() const { return lazy_.size(); }  // not yet absorbed
 
   // What RxD carries now.
   const RxdSegment& input() const;
@@ -137,6 +138,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::Time pipeline(sim::Time t, sim::Time period) const;      // MCLK edge after t + 5.5 bit + 3
   sim::Time report_lag(sim::Time period) const;                 // bound on pipeline(t, period) - t
   void plan_reports();
+  bool lazy_report_due(sim::Time now) const;  // a plan must absorb the lazy bursts first
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
   void consider(Entry& e);
