@@ -90,10 +90,29 @@ void SerialReceiver::set_lazy_hops(bool on) {
   lazy_hops_ = on;
 }
 
+// What consider() would plan for the burst's frames in the telegram processor's present
+// state. With one handler only, consider() also marks the other kind of report done for
+// good, which a later handler would see: that is left to the full path. Inline: asked at
+// every hop.
+inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
+  if (!on_start_ && !on_telegram_) return false;
+  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
+  for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+    const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
+    if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   if (!lazy_hops_ || chain_depth >= kMaxChain || !unit_.running()) return false;
   const sim::Time now = unit_.chip().scheduler().now();
-  if (b.bit_period != unit_.bit_period() || b.start <= now || !recactn_.idle()) return false;
+  if (b.bit_period != unit_.bit_period() || b.start <= now) return false;
+  // Asked first of the dearer checks: it is the one that fails at a node that reads the
+  // burst (the checks have no effects, so their order is free).
+  if (wants_a_report(b) || !recactn_.idle()) return false;
   // After everything announced before (nothing superseded or cut) and between good signals
   // (the line monitor hears nothing): announce() would only keep it.
   SerialRepeater& repeater = unit_.repeater();
@@ -106,7 +125,6 @@ bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
     if (last.segment.since >= b.start || !good(last.segment)) return false;
     if (last.segment.is_burst && b.start < last.cut) return false;
   }
-  if (wants_a_report(b)) return false;
   // A copy first: `b` may live in the history of a fibre this hop books into (a node whose
   // TxD comes back to its own RxD), which may move it.
   LazyBurst kept{b, leaves};
@@ -119,21 +137,6 @@ bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   const sim::ScopedCount link(chain_depth);
   next->line_burst(out);
   return true;
-}
-
-// What consider() would plan for the burst's frames in the telegram processor's present
-// state. With one handler only, consider() also marks the other kind of report done for
-// good, which a later handler would see: that is left to the full path.
-bool SerialReceiver::wants_a_report(const LineBurst& b) const {
-  if (!on_start_ && !on_telegram_) return false;
-  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
-  for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
-    const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
-    if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
-      return true;
-    }
-  }
-  return false;
 }
 
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
