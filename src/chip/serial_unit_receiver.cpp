@@ -303,9 +303,8 @@ void SerialReceiver::work_out(Entry& e, std::size_t first) {
   }
 }
 
-SerialReceiver::FrameState& SerialReceiver::with_reports(Entry& e, std::size_t i) const {
+void SerialReceiver::work_out_reports(Entry& e, std::size_t i) const {
   FrameState& st = e.frames[i];
-  if (st.reports_known) return st;
   const sim::Time since = e.segment.since, period = e.segment.period;
   const std::size_t address_end = e.decode->address_end[i];
   const sim::Time address_in = since + static_cast<sim::Time>(address_end) * period;
@@ -314,7 +313,6 @@ SerialReceiver::FrameState& SerialReceiver::with_reports(Entry& e, std::size_t i
                         ? kNever  // no whole address
                         : pipeline(address_in, period);
   st.reports_known = true;
-  return st;
 }
 
 // Entries over and done with: a later one is in force and no report of theirs is to come.
@@ -457,7 +455,7 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
 void SerialReceiver::plan_reports() {
   sim::Scheduler& s = unit_.chip().scheduler();
   const sim::Time now = s.now();
-  if (lazy_report_due(now)) absorb_lazy();
+  if (!lazy_.empty() && lazy_report_due(now)) absorb_lazy();
   Report best{kNever, 0, 0, false};
   if (unit_.running() && (on_start_ || on_telegram_)) {
     for (Entry& e : timeline_) {
@@ -492,7 +490,6 @@ void SerialReceiver::plan_reports() {
 // need not book each telegram it passes on. With one handler only, the full path marks
 // the other kind done for good: that is left to it.
 bool SerialReceiver::lazy_report_due(sim::Time now) const {
-  if (lazy_.empty()) return false;
   if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
   for (const LazyBurst& lazy : lazy_) {
     const LineBurst& b = lazy.burst;

@@ -133,12 +133,18 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::size_t in_force(sim::Time t) const;  // index of the entry in force at t
   Entry* find(std::uint64_t serial);
 
-  void work_out(Entry& e, std::size_t first);                   // frame times from frame `first` on
-  FrameState& with_reports(Entry& e, std::size_t frame) const;  // report times worked out
-  sim::Time pipeline(sim::Time t, sim::Time period) const;      // MCLK edge after t + 5.5 bit + 3
-  sim::Time report_lag(sim::Time period) const;                 // bound on pipeline(t, period) - t
+  void work_out(Entry& e, std::size_t first);  // frame times from frame `first` on
+  // Report times worked out (inline: asked at every plan, and mostly known by then).
+  FrameState& with_reports(Entry& e, std::size_t frame) const {
+    FrameState& st = e.frames[frame];
+    if (!st.reports_known) work_out_reports(e, frame);
+    return st;
+  }
+  void work_out_reports(Entry& e, std::size_t frame) const;
+  sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
+  sim::Time report_lag(sim::Time period) const;             // bound on pipeline(t, period) - t
   void plan_reports();
-  bool lazy_report_due(sim::Time now) const;  // a plan must absorb the lazy bursts first
+  bool lazy_report_due(sim::Time now) const;  // lazy_ not empty: a plan must absorb it first
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
   void consider(Entry& e);
