@@ -23,13 +23,6 @@ sim::Level LazyPin::provide(const void* self) {
   return sim::level_of(pin.source_.level_at(pin.chip_.scheduler().now()));
 }
 
-bool LazyPin::idle() const { return event_.value == 0 && !signal_.watched(); }
-
-void LazyPin::replan() {
-  if (idle()) return;  // the usual case: unwatched
-  plan(false);
-}
-
 // `watcher_coming`: the first watcher is being added (Signal::watch tells us before it
 // joins, so it does not hear the level brought up to date).
 void LazyPin::plan(bool watcher_coming) {

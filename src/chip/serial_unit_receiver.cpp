@@ -417,9 +417,8 @@ sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
 // One event: the earliest report the telegram processor wants in its present state. A
 // report whose time passes while it is not wanted is dropped: the processor would have
 // done nothing with it.
-bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time now,
-                               sim::Time before) {
-  FrameState& st = e.frames[i];
+bool SerialReceiver::candidate(Entry& e, FrameState& st, std::size_t i, bool telegram,
+                               sim::Time now, sim::Time before) {
   bool& done = telegram ? st.end_done : st.start_done;
   if (done) return false;
   if (!(telegram ? static_cast<bool>(on_telegram_) : static_cast<bool>(on_start_))) {
@@ -430,8 +429,8 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
   // when it is at or after `before`), and most frames pass a chip that wants neither.
   if (st.start >= before) return false;
   const auto report_time = [&] {
-    const FrameState& r = with_reports(e, i);
-    return telegram ? r.telegram_report : r.start_report;
+    if (!st.reports_known) work_out_reports(e, i);
+    return telegram ? st.telegram_report : st.start_report;
   };
   if (interest_ != nullptr) {
     const wire::DecodedFrame& f = e.decode->frames[i];
@@ -452,6 +451,19 @@ bool SerialReceiver::candidate(Entry& e, std::size_t i, bool telegram, sim::Time
   return t < before;
 }
 
+inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best) {
+  FrameState* st = e.frames.data();
+  for (std::size_t i = 0, n = e.frames.size(); i < n; ++i, ++st) {
+    if (st->start_done && st->end_done) continue;  // most frames a plan sees
+    if (candidate(e, *st, i, false, now, best.when)) {
+      best = Report{st->start_report, e.serial, i, false};
+    }
+    if (candidate(e, *st, i, true, now, best.when)) {
+      best = Report{st->telegram_report, e.serial, i, true};
+    }
+  }
+}
+
 void SerialReceiver::plan_reports() {
   sim::Scheduler& s = unit_.chip().scheduler();
   const sim::Time now = s.now();
@@ -460,15 +472,7 @@ void SerialReceiver::plan_reports() {
   if (unit_.running() && (on_start_ || on_telegram_)) {
     for (Entry& e : timeline_) {
       if (e.segment.since > best.when) break;  // in time order: the rest start later still
-      if (!e.decode) continue;
-      for (std::size_t i = 0; i < e.frames.size(); ++i) {
-        if (candidate(e, i, false, now, best.when)) {
-          best = Report{e.frames[i].start_report, e.serial, i, false};
-        }
-        if (candidate(e, i, true, now, best.when)) {
-          best = Report{e.frames[i].telegram_report, e.serial, i, true};
-        }
-      }
+      if (e.decode) scan(e, now, best);
     }
   }
   const bool same = report_event_.value != 0 && best.when == report_.when &&
@@ -511,14 +515,7 @@ void SerialReceiver::consider(Entry& e) {
   sim::Scheduler& s = unit_.chip().scheduler();
   const sim::Time now = s.now();
   Report best{planned, 0, 0, false};
-  for (std::size_t i = 0; i < e.frames.size(); ++i) {
-    if (candidate(e, i, false, now, best.when)) {
-      best = Report{e.frames[i].start_report, e.serial, i, false};
-    }
-    if (candidate(e, i, true, now, best.when)) {
-      best = Report{e.frames[i].telegram_report, e.serial, i, true};
-    }
-  }
+  scan(e, now, best);
   if (best.serial == 0) return;  // the planned report stays the earliest
   s.cancel(report_event_);
   report_ = best;

@@ -34,9 +34,12 @@ class LazyPin {
 
   // What the unit will do from now on changed (a telegram announced, superseded, reset):
   // while the pin is watched, bring it up to date and schedule its next change.
-  void replan();
+  // Inline, as idle(): at every telegram a node is told of, and the pin is mostly unwatched.
+  void replan() {
+    if (!idle()) plan(false);
+  }
   // Nobody watches the pin and no change is planned: replan() would do nothing.
-  bool idle() const;
+  bool idle() const { return event_.value == 0 && !signal_.watched(); }
 
  private:
   static sim::Level provide(const void* self);

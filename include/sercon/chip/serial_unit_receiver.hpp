@@ -78,21 +78,30 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     bool reports_known = false;     // start_report and telegram_report are worked out
     bool start_done = false, end_done = false;
   };
-  // Frame states without an allocation for the usual burst of one or two frames.
+  // Frame states without an allocation for the usual burst of one or two frames: in inline_
+  // up to kInline of them, else all in more_ (contiguous either way, for the plans' walk).
   class FrameStates {
    public:
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
-    FrameState& operator[](std::size_t i) { return i < kInline ? inline_[i] : more_[i - kInline]; }
-    const FrameState& operator[](std::size_t i) const {
-      return i < kInline ? inline_[i] : more_[i - kInline];
-    }
-    FrameState& back() { return (*this)[size_ - 1]; }
-    const FrameState& back() const { return (*this)[size_ - 1]; }
+    FrameState* data() { return size_ <= kInline ? inline_.data() : more_.data(); }
+    const FrameState* data() const { return size_ <= kInline ? inline_.data() : more_.data(); }
+    FrameState& operator[](std::size_t i) { return data()[i]; }
+    const FrameState& operator[](std::size_t i) const { return data()[i]; }
+    FrameState& back() { return data()[size_ - 1]; }
+    const FrameState& back() const { return data()[size_ - 1]; }
     void clear() { resize(0); }
+    // The first min(size(), n) stay as they are; the others are new.
     void resize(std::size_t n) {
-      for (std::size_t i = n; i < std::min(size_, kInline); ++i) inline_[i] = FrameState{};
-      more_.resize(n > kInline ? n - kInline : 0);
+      if (n > kInline) {
+        if (size_ <= kInline) more_.assign(inline_.begin(), inline_.begin() + size_);
+        more_.resize(n);
+      } else if (size_ > kInline) {
+        std::copy_n(more_.begin(), n, inline_.begin());
+        more_.clear();
+      } else {
+        for (std::size_t i = size_; i < n; ++i) inline_[i] = FrameState{};
+      }
       size_ = n;
     }
 
@@ -148,7 +157,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
   void consider(Entry& e);
-  bool candidate(Entry& e, std::size_t frame, bool telegram, sim::Time now, sim::Time before);
+  // The earliest report of e's frames the processor wants, if before best.when, into best.
+  void scan(Entry& e, sim::Time now, Report& best);
+  bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
+                 sim::Time before);
   void fire_report();
   void plan_monitor();
   void fire_monitor();
