@@ -28,6 +28,19 @@ constexpr std::size_t kMaxTimeline = 4096;
 sim::Time five_and_a_half_bits(sim::Time period) { return (11 * period + 1) / 2; }
 }  // namespace
 
+// The report times (inline: worked out for every frame a node reads, and asked at every
+// lazy hop and prune).
+inline sim::Time SerialReceiver::report_lag(sim::Time period) const {
+  return five_and_a_half_bits(period) + 4 * unit_.chip().mclk_period();
+}
+
+inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
+  const sim::Time half_bits = five_and_a_half_bits(period);
+  // Three MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
+  const MclkGrid& mclk = unit_.chip().mclk();
+  return mclk.time_of(mclk.first_at_or_after(t + half_bits) + 3);
+}
+
 SerialReceiver::SerialReceiver(SerialUnit& unit)
     : unit_(unit), recactn_(unit.chip(), Pin::RECACTN, *this) {
   timeline_.push_back(Entry{RxdSegment{}, 0, 0, nullptr, {}});
@@ -141,7 +154,7 @@ bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
 
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
 // RxD too) and this one's reports would be past. The full path would have dropped them.
-void SerialReceiver::prune_lazy(sim::Time now) {
+void SerialReceiver::drop_lazy_over(sim::Time now) {
   while (lazy_.size() > 1 && lazy_[1].leaves <= now) {
     const LineBurst& front = lazy_.front().burst;
     if (front.end() + report_lag(front.bit_period) >= now) return;
@@ -280,14 +293,16 @@ void SerialReceiver::cut(Entry& e, sim::Time at) {
 
 void SerialReceiver::take(Entry& e) {
   e.decode = nullptr;
-  e.frames.clear();
   const RxdSegment& s = e.segment;
-  if (!s.is_burst || s.period != unit_.bit_period()) return;  // distorted: the monitor counts it
+  if (!s.is_burst || s.period != unit_.bit_period()) {  // distorted: the monitor counts it
+    e.frames.clear();
+    return;
+  }
   e.decode =
       s.burst_end() == e.cut
           ? &decode_burst(s.bits)
           : &decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
-  e.frames.resize(e.decode->frames.size());
+  e.frames.reset(e.decode->frames.size());
   work_out(e, 0);
 }
 
@@ -402,17 +417,6 @@ void SerialReceiver::refresh_rate() {
 }
 
 // --- reports to the telegram processor ---------------------------------------------------
-
-sim::Time SerialReceiver::report_lag(sim::Time period) const {
-  return five_and_a_half_bits(period) + 4 * unit_.chip().mclk_period();
-}
-
-sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
-  const sim::Time half_bits = five_and_a_half_bits(period);
-  // Three MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
-  const MclkGrid& mclk = unit_.chip().mclk();
-  return mclk.time_of(mclk.first_at_or_after(t + half_bits) + 3);
-}
 
 // One event: the earliest report the telegram processor wants in its present state. A
 // report whose time passes while it is not wanted is dropped: the processor would have

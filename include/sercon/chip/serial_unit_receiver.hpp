@@ -91,6 +91,15 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     FrameState& back() { return data()[size_ - 1]; }
     const FrameState& back() const { return data()[size_ - 1]; }
     void clear() { resize(0); }
+    // n new frame states (a burst taken afresh).
+    void reset(std::size_t n) {
+      if (n <= kInline) {
+        for (std::size_t i = 0; i < n; ++i) inline_[i] = FrameState{};
+      } else {
+        more_.assign(n, FrameState{});
+      }
+      size_ = n;
+    }
     // The first min(size(), n) stay as they are; the others are new.
     void resize(std::size_t n) {
       if (n > kInline) {
@@ -130,7 +139,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   Entry& append(RxdSegment segment);
   bool try_lazy_hop(const LineBurst& burst);  // true: passed on lazily
   bool wants_a_report(const LineBurst& burst) const;
-  void prune_lazy(sim::Time now);
+  void prune_lazy(sim::Time now) {
+    if (lazy_.size() > 1 && lazy_[1].leaves <= now) drop_lazy_over(now);  // mostly not
+  }
+  void drop_lazy_over(sim::Time now);
   // For the const readers of the timeline: the receiver itself is never const.
   void absorb_lazy_to_read() const { const_cast<SerialReceiver*>(this)->absorb_lazy(); }
   void pass_to_repeater(const Entry& e);
