@@ -162,8 +162,7 @@ void SerialReceiver::drop_lazy_over(sim::Time now) {
   }
 }
 
-void SerialReceiver::absorb_lazy() {
-  if (lazy_.empty()) return;
+void SerialReceiver::absorb_waiting() {
   prune_lazy(unit_.chip().scheduler().now());  // a burst over by now would only be pruned
   // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
@@ -183,11 +182,8 @@ void SerialReceiver::absorb_lazy() {
 
 // A new last entry (the caller has dropped what it supersedes), not yet taken.
 SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
-  Entry& e = timeline_.emplace_back();
-  e.cut = segment.is_burst ? segment.burst_end() : segment.since;
-  e.serial = next_serial_++;
-  e.segment = std::move(segment);
-  return e;
+  const sim::Time cut = segment.is_burst ? segment.burst_end() : segment.since;
+  return timeline_.emplace_back(std::move(segment), cut, next_serial_++);
 }
 
 void SerialReceiver::announce(RxdSegment segment) {

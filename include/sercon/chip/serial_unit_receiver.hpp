@@ -58,7 +58,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // runs before anything reads or changes them. Off: every burst takes the full path (the
   // results are the same; the tests compare both).
   void set_lazy_hops(bool on);
-  void absorb_lazy();
+  void absorb_lazy() {
+    if (!lazy_.empty()) absorb_waiting();  // inline: asked before every change, mostly none
+  }
   std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
   std::size_t lazy_bursts_waiting() const { return lazy_.size(); }  // not yet absorbed
 
@@ -139,6 +141,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   Entry& append(RxdSegment segment);
   bool try_lazy_hop(const LineBurst& burst);  // true: passed on lazily
   bool wants_a_report(const LineBurst& burst) const;
+  void absorb_waiting();
   void prune_lazy(sim::Time now) {
     if (lazy_.size() > 1 && lazy_[1].leaves <= now) drop_lazy_over(now);  // mostly not
   }
