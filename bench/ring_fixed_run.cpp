@@ -1,0 +1,40 @@
+// The 8-slave CP4 ring of ring_bench, run for a fixed number of cycles: a deterministic
+// workload for instruction counts under callgrind, where Google Benchmark's iteration count
+// (chosen from wall time) would weigh the set-up differently from run to run.
+//   valgrind --tool=callgrind ring_fixed_run [cycles]
+// Instructions per cycle = inclusive instructions of Scheduler::run_until / (cycles + 8).
+// docs/performance.md, "Ring".
+#include <charconv>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "cp4_ring.hpp"
+
+int main(int argc, char** argv) {
+  using namespace sercon::chip::telegram_testing;
+  int cycles = 400;
+  if (argc > 1) {
+    const std::string_view arg = argv[1];
+    const auto [end, error] = std::from_chars(arg.data(), arg.data() + arg.size(), cycles);
+    if (error != std::errc{} || end != arg.data() + arg.size() || cycles < 40 || cycles % 40 != 0) {
+      std::fprintf(stderr,
+                   "ring_fixed_run: cycles must be a multiple of 40, at least 40 (got '%s')\n",
+                   argv[1]);
+      return 2;
+    }
+  }
+  Cp4Ring ring(layout_for(8, 250));
+  ring.run_cycles(8);  // phase-up into CP4, as ring_bench does
+  std::uint16_t value = 0x1234;
+  for (int i = 0; i < cycles / 40; ++i) {
+    ring.change_data(++value);
+    ring.run_cycles(40);
+    if (const std::string e = ring.data_arrived(value); !e.empty()) {
+      std::fprintf(stderr, "ring_fixed_run: %s\n", e.c_str());
+      return 1;
+    }
+  }
+  std::printf("%d cycles (+8 set-up) of master + 8 slaves, CP4, 250 us\n", cycles);
+  return 0;
+}
