@@ -14,7 +14,12 @@ namespace {
                               " ps is before now (" + std::to_string(now) + " ps)");
 }
 
+// SortedRun::insert walks from the front when an entry goes at most this far in.
+constexpr std::size_t kFrontWalk = 8;
+
 }  // namespace
+
+void Scheduler::refuse_past(const char* what, Time when) const { throw_past(what, when, now_); }
 
 [[gnu::noinline]] std::uint32_t Scheduler::new_slot() {
   slots_.emplace_back();
@@ -40,6 +45,16 @@ void Scheduler::SortedRun::insert(const Entry& entry) {
   if (head == tail) {
     head = tail = 0;
   } else if (when < buffer[tail - 1].when) {
+    // Most late-comers belong only a few places behind the front (few entries are due
+    // sooner): walk there from the front, moving those few one place towards the entries
+    // that have run. Further in, a binary search.
+    if (head > 0 && (tail - head <= kFrontWalk || when < buffer[head + kFrontWalk].when)) {
+      Entry* at = buffer.data() + head;
+      for (; at->when <= when; ++at) at[-1] = *at;
+      at[-1] = entry;
+      --head;
+      return;
+    }
     Entry* const first = buffer.data() + head;
     Entry* const last = buffer.data() + tail;
     // Branch-free upper bound: the first entry later than `when` (one exists).
@@ -107,15 +122,6 @@ Scheduler::EventId Scheduler::at(Time when, Callback callback) {
   Slot& slot = slots_[index];
   slot.action = nullptr;
   slot.callback = std::move(callback);
-  return take_slot(index, when);
-}
-
-Scheduler::EventId Scheduler::at(Time when, Action action, void* context) {
-  if (when < now_) throw_past("Scheduler::at", when, now_);
-  const std::uint32_t index = free_slot_index();
-  Slot& slot = slots_[index];
-  slot.action = action;
-  slot.context = context;
   return take_slot(index, when);
 }
 

@@ -34,6 +34,40 @@ TEST(Scheduler, SameTimeEventsRunInSchedulingOrder) {
   EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4}));
 }
 
+// docs/architecture.md, "Determinism": an event scheduled before others already pending
+// (a few places in, where the queue walks to its place, or far in, where it searches)
+// runs after every event already due at its time and before the later ones.
+TEST(Scheduler, LateComersRunAfterThoseAlreadyDueAtTheirTime) {
+  Scheduler s;
+  std::vector<int> order;
+  struct Tag {
+    std::vector<int>* order;
+    int value;
+  };
+  std::vector<Tag> tags;
+  tags.reserve(64);
+  auto schedule = [&](Time when, int value) {
+    tags.push_back({&order, value});
+    s.at(
+        when,
+        [](void* tag) {
+          auto* t = static_cast<Tag*>(tag);
+          t->order->push_back(t->value);
+        },
+        &tags.back());
+  };
+  for (int i = 0; i < 20; ++i) schedule(10 * (i + 1), 10 * (i + 1));
+  s.run_until(20);     // two have run: the queue's front has moved
+  schedule(40, 41);    // three places in
+  schedule(30, 31);    // at the front's time
+  schedule(25, 25);    // before everything pending
+  schedule(180, 181);  // far in
+  schedule(40, 42);    // after the first late-comer at 40
+  s.run_until(1000);
+  EXPECT_EQ(order, (std::vector<int>{10,  20,  25,  30,  31,  40,  41,  42,  50,  60,  70,  80, 90,
+                                     100, 110, 120, 130, 140, 150, 160, 170, 180, 181, 190, 200}));
+}
+
 TEST(Scheduler, EventsScheduledByEventsAtTheSameTimeRunBeforeTheClockMoves) {
   Scheduler s;
   std::vector<int> order;
