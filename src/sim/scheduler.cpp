@@ -14,9 +14,6 @@ namespace {
                               " ps is before now (" + std::to_string(now) + " ps)");
 }
 
-// SortedRun::insert walks from the front when an entry goes at most this far in.
-constexpr std::size_t kFrontWalk = 8;
-
 }  // namespace
 
 void Scheduler::refuse_past(const char* what, Time when) const { throw_past(what, when, now_); }
@@ -45,10 +42,15 @@ void Scheduler::SortedRun::insert(const Entry& entry) {
   if (head == tail) {
     head = tail = 0;
   } else if (when < buffer[tail - 1].when) {
-    // Most late-comers belong only a few places behind the front (few entries are due
-    // sooner): walk there from the front, moving those few one place towards the entries
-    // that have run. Further in, a binary search.
-    if (head > 0 && (tail - head <= kFrontWalk || when < buffer[head + kFrontWalk].when)) {
+    // A few places behind the front: walk there as Scheduler::insert does, once there is
+    // room before the front. Further in, a binary search.
+    if (tail - head <= kWalk || when < buffer[head + kWalk].when) {
+      if (head == 0) {  // room for this entry and the next few late-comers
+        if (tail + kWalk > buffer.size()) make_room();
+        std::copy_backward(buffer.data(), buffer.data() + tail, buffer.data() + tail + kWalk);
+        head += kWalk;
+        tail += kWalk;
+      }
       Entry* at = buffer.data() + head;
       for (; at->when <= when; ++at) at[-1] = *at;
       at[-1] = entry;

@@ -57,15 +57,18 @@ TEST(Scheduler, LateComersRunAfterThoseAlreadyDueAtTheirTime) {
         &tags.back());
   };
   for (int i = 0; i < 20; ++i) schedule(10 * (i + 1), 10 * (i + 1));
-  s.run_until(20);     // two have run: the queue's front has moved
+  schedule(20, 21);  // before any has run: no room before the front yet
+  schedule(5, 5);
+  s.run_until(20);     // four have run: the queue's front has moved
   schedule(40, 41);    // three places in
   schedule(30, 31);    // at the front's time
   schedule(25, 25);    // before everything pending
   schedule(180, 181);  // far in
   schedule(40, 42);    // after the first late-comer at 40
   s.run_until(1000);
-  EXPECT_EQ(order, (std::vector<int>{10,  20,  25,  30,  31,  40,  41,  42,  50,  60,  70,  80, 90,
-                                     100, 110, 120, 130, 140, 150, 160, 170, 180, 181, 190, 200}));
+  EXPECT_EQ(order,
+            (std::vector<int>{5,  10,  20,  21,  25,  30,  31,  40,  41,  42,  50,  60,  70, 80,
+                              90, 100, 110, 120, 130, 140, 150, 160, 170, 180, 181, 190, 200}));
 }
 
 TEST(Scheduler, EventsScheduledByEventsAtTheSameTimeRunBeforeTheClockMoves) {

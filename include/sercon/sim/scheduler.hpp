@@ -136,6 +136,9 @@ class Scheduler {
     std::size_t head = 0;
     std::size_t tail = 0;
 
+    // insert() walks to an entry's place from the front when it goes at most this far in.
+    static constexpr std::size_t kWalk = 8;
+
     bool empty() const { return head == tail; }
     void insert(const Entry& entry);
     void remove(Time when, std::uint32_t slot);
@@ -155,13 +158,23 @@ class Scheduler {
     }
   }
   void refill();
-  // Inline: most new entries go at the back of a run that has room.
+  // Inline: most new entries go at the back of a run that has room, and most of the others
+  // only a few places behind its front (few entries are due sooner): they walk there from
+  // the front, moving those few one place towards the entries that have run.
   void insert(Time when, std::uint32_t slot, std::uint32_t generation) {
     SortedRun& run = when <= near_limit_ ? near_ : far_;
-    if (run.head == run.tail) run.head = run.tail = 0;
-    if (run.tail < run.buffer.size() &&
-        (run.tail == run.head || when >= run.buffer[run.tail - 1].when)) {
-      run.buffer[run.tail++] = Entry{when, slot, generation};
+    Entry* const data = run.buffer.data();
+    if (run.tail == run.head || when >= data[run.tail - 1].when) {
+      if (run.tail < run.buffer.size()) {
+        data[run.tail++] = Entry{when, slot, generation};
+        return;
+      }
+    } else if (run.head > 0 && (run.tail - run.head <= SortedRun::kWalk ||
+                                when < data[run.head + SortedRun::kWalk].when)) {
+      Entry* at = data + run.head;
+      for (; at->when <= when; ++at) at[-1] = *at;
+      at[-1] = Entry{when, slot, generation};
+      --run.head;
       return;
     }
     run.insert(Entry{when, slot, generation});
