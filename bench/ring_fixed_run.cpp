@@ -2,7 +2,8 @@
 // workload for instruction counts under callgrind, where Google Benchmark's iteration count
 // (chosen from wall time) would weigh the set-up differently from run to run.
 //   valgrind --tool=callgrind ring_fixed_run [cycles]
-// Instructions per cycle = inclusive instructions of Scheduler::run_until / (cycles + 8).
+// Instructions per steady cycle: the program totals of a 440- and a 40-cycle run,
+// differenced, / 400 (set-up and phase-up drop out).
 // docs/performance.md, "Ring".
 #include <charconv>
 #include <cstdio>
