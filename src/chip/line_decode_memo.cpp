@@ -70,7 +70,10 @@ void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::u
                  std::span<const std::uint8_t> data, std::uint16_t fcs) {
   BurstDecodes& d = bits.decodes();
   if (d.whole || where.start_bit != 0 || where.end_bit != bits->size()) return;
-  auto result = std::make_unique<BurstDecode>();
+  // A released object's decode, filled again (shared_bits.hpp, "Recycled"): every field
+  // is set, the storage of its vectors kept.
+  std::unique_ptr<BurstDecode> result =
+      d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
   ++decodes;
   result->frames.resize(1);
   wire::DecodedFrame& f = result->frames.front();
@@ -84,9 +87,11 @@ void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::u
     f.error = wire::FrameError::None;
   } else {
     f.data = {static_cast<std::uint8_t>(fcs & 0xFFu), static_cast<std::uint8_t>(fcs >> 8)};
+    f.fcs_received = 0;
+    f.fcs_computed = 0;
     f.error = wire::FrameError::TooShort;
   }
-  result->address_end.push_back(where.start_bit + address_end_bit(address));
+  result->address_end.assign(1, where.start_bit + address_end_bit(address));
   d.whole = std::move(result);
 }
 

@@ -7,6 +7,7 @@
 #include <bit>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "sercon/wire/fcs.hpp"
 
@@ -87,6 +88,11 @@ template <class Full>
 }  // namespace
 
 LineEncoder::LineEncoder(bool initial_level_high) : level_(initial_level_high) {}
+
+LineEncoder::LineEncoder(bool initial_level_high, LineBits buffer)
+    : bits_(std::move(buffer)), level_(initial_level_high) {
+  bits_.clear();
+}
 
 void LineEncoder::put_decoded(std::uint64_t msb_first, unsigned count) {
   Decoded d{pending_, pending_count_, ones_run_};

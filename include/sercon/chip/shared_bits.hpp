@@ -7,6 +7,11 @@
 // there cost a measurable share of a ring's time (docs/performance.md, "Ring"). So a bits
 // object belongs to one simulation and the thread that runs it, like every other object
 // of that simulation.
+//
+// Recycled: a released object goes to a free list of the thread that releases it, with its
+// bit buffer and its whole decode's storage, and the next one made on that thread takes it,
+// so a chip sending a telegram per cycle allocates nothing once its ring is warm
+// (docs/serial-and-ring.md, "Bits objects are recycled").
 #pragma once
 
 #include <cstddef>
@@ -30,6 +35,8 @@ struct BurstDecodes {
   std::unique_ptr<const BurstDecode> whole;
   // The burst cut after a line bit (a telegram cut by the next change), per cut position.
   std::vector<std::pair<std::size_t, std::unique_ptr<const BurstDecode>>> prefixes;
+  // The whole decode of a released object, kept for seed_decode to fill again.
+  std::unique_ptr<BurstDecode> spare;
 };
 
 class SharedBits {
@@ -52,7 +59,7 @@ class SharedBits {
     return *this;
   }
   ~SharedBits() {
-    if (node_ && --node_->count == 0) delete node_;
+    if (node_ && --node_->count == 0) release(node_);
   }
 
   const wire::LineBits* get() const { return node_ ? &node_->bits : nullptr; }
@@ -67,20 +74,36 @@ class SharedBits {
 
  private:
   struct Node {
-    explicit Node(wire::LineBits b) : bits(std::move(b)) {}
     wire::LineBits bits;
     std::size_t count = 1;
     BurstDecodes decodes;
   };
+  struct Pool;
+  static thread_local Pool pool_;
   explicit SharedBits(Node* node) : node_(node) {}
+  static Node* fresh_node();  // counted from one, bits empty, no decodes (shared_bits.cpp)
+  static void release(Node* node) noexcept;
   friend SharedBits share_bits(wire::LineBits bits);
+  template <class Write>
+  friend SharedBits write_shared_bits(Write&& write);
 
   Node* node_ = nullptr;
 };
 
-// The one way to make bits to share: a new object, counted from one.
+// Bits to share: a new object, counted from one.
 inline SharedBits share_bits(wire::LineBits bits) {
-  return SharedBits(new SharedBits::Node(std::move(bits)));
+  SharedBits shared(SharedBits::fresh_node());
+  shared.node_->bits = std::move(bits);
+  return shared;
+}
+
+// The same, written in place: `write` gets the new object's bits, empty, in a buffer a
+// released object may have used (so a steady stream of telegrams allocates nothing).
+template <class Write>
+SharedBits write_shared_bits(Write&& write) {
+  SharedBits shared(SharedBits::fresh_node());
+  write(shared.node_->bits);
+  return shared;
 }
 
 }  // namespace sercon::chip

@@ -26,6 +26,9 @@ class LineEncoder {
  public:
   // The line level before the first bit this encoder writes.
   explicit LineEncoder(bool initial_level_high = true);
+  // The same, writing into `buffer`'s storage from its start (its bits are dropped): a
+  // buffer used before needs no allocation.
+  LineEncoder(bool initial_level_high, LineBits buffer);
 
   // Idle fill: decoded `0` then seven `1`s, repeated, so the line changes level once every
   // 8 bits. Consecutive idle() calls continue the pattern where the last one stopped;
