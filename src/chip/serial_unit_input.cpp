@@ -16,28 +16,6 @@ std::uint64_t ceil_div(sim::Time a, sim::Time b) {
 
 }  // namespace
 
-RxdSegment RxdSegment::of(sim::Time at, LineCondition condition, sim::Time period) {
-  RxdSegment s;
-  s.condition = condition;
-  s.since = at;
-  s.period = period;
-  return s;
-}
-
-RxdSegment RxdSegment::of(const LineBurst& burst) {
-  RxdSegment s;
-  s.is_burst = true;
-  s.condition = LineCondition::Idle;
-  s.since = burst.start;
-  s.period = burst.bit_period;
-  s.bits = burst.bits;
-  return s;
-}
-
-sim::Time RxdSegment::burst_end() const {
-  return since + static_cast<sim::Time>(bits ? bits->size() : 0) * period;
-}
-
 void expect_absorbed_in_order(std::string_view line, sim::Time last, sim::Time at) {
   if (last < at) return;
   throw std::logic_error(std::string(line) + ": a lazy burst at " + std::to_string(at) +

@@ -54,6 +54,7 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
   unit_.receiver().absorb_lazy();
   Output& out = outputs_[index_of_pin(pin)];
   out.listener = &listener;
+  find_lone_follower();
   const View& v = out.view;
   if (v.mode == Mode::Line) {
     tell_line(listener);
@@ -65,6 +66,19 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
 void TxdOutputs::disconnect(unsigned pin) {
   unit_.receiver().absorb_lazy();
   outputs_[index_of_pin(pin)].listener = nullptr;
+  find_lone_follower();
+}
+
+void TxdOutputs::find_lone_follower() {
+  lone_follower_ = nullptr;
+  for (const Output& o : outputs_) {
+    if (o.view.mode != Mode::Line || o.listener == nullptr) continue;
+    if (lone_follower_ != nullptr) {  // two listeners follow the line
+      lone_follower_ = nullptr;
+      return;
+    }
+    lone_follower_ = o.listener;
+  }
 }
 
 const RxdSegment& TxdOutputs::line_now() const {
@@ -112,12 +126,7 @@ void TxdOutputs::line_burst(const LineBurst& burst) {
 }
 
 bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
-  LineListener* only = nullptr;
-  for (const Output& o : outputs_) {
-    if (o.view.mode != Mode::Line || o.listener == nullptr) continue;
-    if (only != nullptr) return false;  // two listeners follow the line
-    only = o.listener;
-  }
+  LineListener* only = lone_follower_;
   // Nothing announced at or after it to drop, and no change between dark and light (the
   // pins' plan stays as it is): what line_burst() would do is only to keep it.
   if (only == nullptr || line_.back().since >= burst.start || is_dark(line_.back())) return false;
@@ -214,6 +223,7 @@ void TxdOutputs::show(unsigned pin, const View& v) {
   unit_.chip().set_output(txd_pin(pin), pin_level(v));
   if (out.view == v) return;
   out.view = v;
+  find_lone_follower();
   if (!out.listener) return;
   if (v.mode == Mode::Line) {
     prune();

@@ -8,6 +8,7 @@ namespace sercon::ring {
 
 using chip::LineBurst;
 using chip::LineCondition;
+using chip::SharedBits;
 
 namespace {
 
@@ -71,18 +72,16 @@ void Fibre::take(Change change) {
   }
   change.burst.start += delay_;
   if (change.is_burst && errors_.enabled()) change.burst.bits = errors_.apply(change.burst.bits);
-  record(std::move(change));
+  record_at(change.burst.start) = std::move(change);
   if (!broken_) pass_on(history_.back());
 }
 
 // The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
-void Fibre::record(Change change) {
+Fibre::Change& Fibre::record_at(sim::Time start) {
   const sim::Time now = scheduler_.now();
-  while (!history_.empty() && history_.back().burst.start >= change.burst.start) {
-    history_.pop_back();
-  }
+  while (!history_.empty() && history_.back().burst.start >= start) history_.pop_back();
   while (history_.size() > 1 && history_[1].burst.start <= now) history_.pop_front();
-  history_.push_back(std::move(change));
+  return history_.emplace_back();
 }
 
 // A lazy hop (line.hpp): whole and without bit errors, the fibre passes a burst on as it
@@ -91,13 +90,17 @@ bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& nex
   Fibre& f = fibre_;
   if (f.broken_ || f.errors_.enabled() || f.output_ == nullptr) return false;
   if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
-  Change c;
+  // Read first: `burst` may live in this history (a TxD looped back to its own RxD).
+  const sim::Time start = burst.start + f.delay_;
+  const sim::Time period = burst.bit_period;
+  SharedBits bits = burst.bits;
+  Change& c = f.record_at(start);
   c.is_burst = true;
-  c.burst = burst;
-  c.burst.start += f.delay_;
-  f.record(std::move(c));
+  c.burst.start = start;
+  c.burst.bit_period = period;
+  c.burst.bits = std::move(bits);
   next = f.output_;
-  out = f.history_.back().burst;
+  out = c.burst;
   return true;
 }
 

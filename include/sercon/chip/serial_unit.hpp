@@ -65,7 +65,7 @@ class SerialUnit : public ChipUnit {
   void release() override;
 
   // One bit time at the present rate (Chip::serial_clocks()); 0 while the clocks are off.
-  sim::Time bit_period() const;
+  sim::Time bit_period() const { return bit_period_; }
 
   // First TxC edge at or after t: the transmit bit clock ticks at k * bit_period() from
   // time 0 (SCLK grid), and a telegram can only begin on a tick.

@@ -20,11 +20,17 @@ struct RxdSegment {
   sim::Time period = 0;                           // bit period; 0 for Dark and Light
   SharedBits bits;                                // when is_burst
 
-  static RxdSegment of(sim::Time at, LineCondition condition, sim::Time period);
-  static RxdSegment of(const LineBurst& burst);
+  static RxdSegment of(sim::Time at, LineCondition condition, sim::Time period) {
+    return RxdSegment{false, condition, at, period, nullptr};
+  }
+  static RxdSegment of(const LineBurst& burst) {
+    return RxdSegment{true, LineCondition::Idle, burst.start, burst.bit_period, burst.bits};
+  }
 
   LineBurst burst() const { return LineBurst{since, period, bits}; }
-  sim::Time burst_end() const;  // since + bits * period (bursts only)
+  sim::Time burst_end() const {  // since + bits * period (bursts only)
+    return since + static_cast<sim::Time>(bits ? bits->size() : 0) * period;
+  }
   bool has_edges() const {
     return is_burst || condition == LineCondition::Idle || condition == LineCondition::ZeroBits;
   }

@@ -76,9 +76,11 @@ class TxdOutputs {
   void plan_pins();  // an event where the line next goes dark or lights up
 
   static void pass_on(LineListener& listener, const RxdSegment& segment);
+  void find_lone_follower();  // after a listener or a view changed
 
   SerialUnit& unit_;
   std::array<Output, 6> outputs_{};
+  LineListener* lone_follower_ = nullptr;  // the one listener following the line; none or two: null
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).
   sim::VectorQueue<RxdSegment> line_;

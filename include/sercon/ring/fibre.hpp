@@ -71,8 +71,10 @@ class Fibre {
     chip::LineCondition condition = chip::LineCondition::Dark;
     chip::LineBurst burst;
   };
-  void take(Change change);    // from the input, time already moved by the delay
-  void record(Change change);  // into the history (the far end's time), the later word wins
+  void take(Change change);  // from the input, time already moved by the delay
+  // A new last change of the history (the far end's time) at `start`, for the caller to
+  // fill; the later word wins.
+  Change& record_at(sim::Time start);
   void pass_on(const Change& change);
   void tell_far_end();  // the far end's present condition, then what is still on its way
   sim::Scheduler& scheduler_;
