@@ -43,8 +43,8 @@ void TxdOutputs::tell_line(LineListener& listener) const {
   const LineCondition c = line_condition_now(&period);
   const sim::Time now = unit_.chip().scheduler().now();
   std::vector<RxdSegment> later;
-  for (const RxdSegment& s : line_) {
-    if (s.since > now) later.push_back(s);
+  for (std::size_t i = 0; i < line_.size(); ++i) {
+    if (line_[i].since > now) later.push_back(line_[i]);
   }
   listener.line_condition(now, c, period);
   for (const RxdSegment& s : later) pass_on(listener, s);

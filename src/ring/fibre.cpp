@@ -131,8 +131,8 @@ void Fibre::tell_far_end() {
   }
   // Still on their way. Taken out first: in a loop (a node's TxD back to its own RxD) what is
   // passed on comes back into this history while it is walked.
-  const std::vector<Change> on_their_way(history_.begin() + static_cast<std::ptrdiff_t>(next),
-                                         history_.end());
+  std::vector<Change> on_their_way;
+  for (std::size_t i = next; i < history_.size(); ++i) on_their_way.push_back(history_[i]);
   for (const Change& c : on_their_way) pass_on(c);
 }
 

@@ -42,7 +42,8 @@ struct RxdSegment {
 // A line's announced segments in time order, the front in force now (repeater, TxD):
 // drops those announced for `at` or later (the later word wins, line.hpp); true if any.
 // Inline: at every hop, and usually nothing to drop.
-inline bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at) {
+template <class Line>
+inline bool drop_announced_from(Line& line, sim::Time at) {
   bool dropped = false;
   while (!line.empty() && line.back().since >= at) {
     line.pop_back();
@@ -51,7 +52,8 @@ inline bool drop_announced_from(sim::VectorQueue<RxdSegment>& line, sim::Time at
   return dropped;
 }
 // Drops the segments a later one has replaced by `now`; the one in force stays.
-inline void drop_replaced_by(sim::VectorQueue<RxdSegment>& line, sim::Time now) {
+template <class Line>
+inline void drop_replaced_by(Line& line, sim::Time now) {
   while (line.size() > 1 && line[1].since <= now) line.pop_front();
 }
 

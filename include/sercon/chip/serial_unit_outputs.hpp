@@ -10,10 +10,10 @@
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
+#include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
 #include "sercon/sim/signal.hpp"
 #include "sercon/sim/time.hpp"
-#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -83,7 +83,7 @@ class TxdOutputs {
   LineListener* lone_follower_ = nullptr;  // the one listener following the line; none or two: null
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).
-  sim::VectorQueue<RxdSegment> line_;
+  sim::CircularQueue<RxdSegment> line_;
   sim::Scheduler::EventId pins_event_{};
 };
 

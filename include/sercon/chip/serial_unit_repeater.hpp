@@ -11,8 +11,8 @@
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
+#include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/time.hpp"
-#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -56,8 +56,8 @@ class SerialRepeater {
   bool repon_ = false;
   // What leaves TxD when no own telegram is in the way, in time order, the front in force
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
-  sim::VectorQueue<RxdSegment> background_;
-  sim::VectorQueue<LineBurst> own_;  // own telegrams not yet over, in time order
+  sim::CircularQueue<RxdSegment> background_;
+  sim::CircularQueue<LineBurst> own_;  // own telegrams not yet over, in time order
 };
 
 }  // namespace sercon::chip

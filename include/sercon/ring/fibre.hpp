@@ -10,8 +10,8 @@
 
 #include "sercon/chip/line.hpp"
 #include "sercon/ring/bit_errors.hpp"
+#include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
-#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::ring {
 
@@ -86,7 +86,7 @@ class Fibre {
   BitErrors errors_;
   // What went in and reaches (or reached) the far end, in time order: the change in force
   // there now and those still on their way (kept while broken, for a restore).
-  sim::VectorQueue<Change> history_;
+  sim::CircularQueue<Change> history_;
   std::vector<sim::Scheduler::EventId> switches_;  // break_at / restore_at
 };
 

@@ -1,0 +1,72 @@
+// A queue in a circular buffer: elements are taken off the front and put on the back (and,
+// for timelines where the later word wins, dropped off the back), each in a few
+// instructions, with no moving of the rest as a steady stream passes through. For the
+// short timelines a telegram passes through at every hop: a repeater's, a TxD line's, a
+// fibre's history (docs/performance.md, "Ring"). A slot not in use holds T{}: a taken
+// element lets go of what it holds at once.
+#pragma once
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace sercon::sim {
+
+template <class T>
+class CircularQueue {
+ public:
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+
+  T& operator[](std::size_t i) { return items_[(head_ + i) & mask_]; }
+  const T& operator[](std::size_t i) const { return items_[(head_ + i) & mask_]; }
+  T& front() { return items_[head_]; }
+  const T& front() const { return items_[head_]; }
+  T& back() { return (*this)[size_ - 1]; }
+  const T& back() const { return (*this)[size_ - 1]; }
+
+  void push_back(const T& item) { next_slot() = item; }
+  void push_back(T&& item) { next_slot() = std::move(item); }
+  // With no arguments: the new back is T{} (the free slot as it is).
+  template <class... Args>
+  T& emplace_back(Args&&... args) {
+    T& slot = next_slot();
+    if constexpr (sizeof...(Args) > 0) slot = T(std::forward<Args>(args)...);
+    return slot;
+  }
+  void pop_back() {
+    back() = T{};
+    --size_;
+  }
+  void pop_front() {
+    items_[head_] = T{};
+    head_ = (head_ + 1) & mask_;
+    --size_;
+  }
+  void clear() {
+    while (size_ > 0) pop_back();
+    head_ = 0;
+  }
+
+ private:
+  // The slot after the back, counted in; the buffer doubles when full.
+  T& next_slot() {
+    if (size_ == items_.size()) grow();
+    ++size_;
+    return back();
+  }
+  void grow() {
+    std::vector<T> bigger(items_.empty() ? 8 : 2 * items_.size());
+    for (std::size_t i = 0; i < size_; ++i) bigger[i] = std::move((*this)[i]);
+    items_ = std::move(bigger);
+    head_ = 0;
+    mask_ = items_.size() - 1;
+  }
+
+  std::vector<T> items_;  // a power of two of slots, or none
+  std::size_t head_ = 0;
+  std::size_t size_ = 0;
+  std::size_t mask_ = 0;
+};
+
+}  // namespace sercon::sim

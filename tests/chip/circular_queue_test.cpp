@@ -1,0 +1,66 @@
+// The timelines of a repeater, a TxD line and a fibre (sim/circular_queue.hpp): a queue in
+// a circular buffer that keeps its order across wrap-around and growth, and lets go of a
+// taken element at once (docs/serial-and-ring.md, "Bits objects are recycled": a released
+// telegram's bits go back to the free list when the last timeline drops them).
+#include "sercon/sim/circular_queue.hpp"
+
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <memory>
+#include <random>
+
+namespace sercon::sim {
+namespace {
+
+TEST(serial_CircularQueue, KeepsOrderAcrossWrapAndGrowth) {
+  CircularQueue<int> q;
+  std::deque<int> model;
+  std::mt19937 rng(7);
+  int next = 0;
+  for (int step = 0; step < 20000; ++step) {
+    const unsigned op = rng() % 8;
+    if (op < 4 || model.empty()) {
+      q.push_back(next);
+      model.push_back(next++);
+    } else if (op < 7) {
+      q.pop_front();
+      model.pop_front();
+    } else {
+      q.pop_back();
+      model.pop_back();
+    }
+    ASSERT_EQ(q.size(), model.size());
+    ASSERT_EQ(q.empty(), model.empty());
+    if (!model.empty()) {
+      ASSERT_EQ(q.front(), model.front());
+      ASSERT_EQ(q.back(), model.back());
+      ASSERT_EQ(q[model.size() / 2], model[model.size() / 2]);
+    }
+  }
+}
+
+TEST(serial_CircularQueue, ATakenElementIsLetGoAtOnce) {
+  CircularQueue<std::shared_ptr<int>> q;
+  const auto a = std::make_shared<int>(1);
+  const auto b = std::make_shared<int>(2);
+  for (int i = 0; i < 5; ++i) q.push_back(nullptr);  // the buffer wraps below
+  for (int i = 0; i < 5; ++i) q.pop_front();
+  q.push_back(a);
+  q.push_back(b);
+  q.emplace_back();
+  EXPECT_EQ(q.back(), nullptr);  // a new slot without arguments is T{}
+  EXPECT_EQ(a.use_count(), 2);
+  q.pop_front();
+  EXPECT_EQ(a.use_count(), 1);
+  q.pop_back();
+  q.pop_back();
+  EXPECT_EQ(b.use_count(), 1);
+  q.push_back(b);
+  q.clear();
+  EXPECT_EQ(b.use_count(), 1);
+  EXPECT_TRUE(q.empty());
+}
+
+}  // namespace
+}  // namespace sercon::sim
