@@ -45,9 +45,9 @@ std::unique_ptr<const BurstDecode> run_decoder(const wire::LineBits& bits, std::
 
 }  // namespace
 
-const BurstDecode& decode_burst(const SharedBits& bits) {
+const BurstDecode& decode_whole_burst(const SharedBits& bits) {
   BurstDecodes& d = bits.decodes();
-  if (!d.whole) d.whole = run_decoder(*bits, bits->size(), 0);
+  d.whole = run_decoder(*bits, bits->size(), 0);
   return *d.whole;
 }
 

@@ -18,7 +18,12 @@ namespace sercon::chip {
 
 // The whole burst. The level before bit 0 is taken to be the opposite of bit 0 (a burst
 // begins with the opening flag's leading 0, a level change). Lives as long as `bits`.
-const BurstDecode& decode_burst(const SharedBits& bits);
+// Inline: asked at every hop of a lazy chain, and almost always there already.
+const BurstDecode& decode_whole_burst(const SharedBits& bits);  // the memo miss
+inline const BurstDecode& decode_burst(const SharedBits& bits) {
+  const BurstDecodes& d = bits.decodes();
+  return d.whole ? *d.whole : decode_whole_burst(bits);
+}
 
 // The burst cut after line bit `cut_bit` (< bits->size()): the line has no edges after the
 // cut, so a frame open there ends as an Abort (or Truncated) within 8 bits. Lives as long
