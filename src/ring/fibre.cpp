@@ -78,10 +78,15 @@ void Fibre::take(Change change) {
 
 // The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
 Fibre::Change& Fibre::record_at(sim::Time start) {
+  if (!history_.empty() && history_.back().burst.start >= start) drop_from(start);
   const sim::Time now = scheduler_.now();
-  while (!history_.empty() && history_.back().burst.start >= start) history_.pop_back();
   while (history_.size() > 1 && history_[1].burst.start <= now) history_.pop_front();
   return history_.emplace_back();
+}
+
+// Rare (a later word overtaking one announced before): kept out of record_at's code.
+void Fibre::drop_from(sim::Time start) {
+  while (!history_.empty() && history_.back().burst.start >= start) history_.pop_back();
 }
 
 // A lazy hop (line.hpp): whole and without bit errors, the fibre passes a burst on as it

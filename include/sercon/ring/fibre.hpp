@@ -75,6 +75,7 @@ class Fibre {
   // A new last change of the history (the far end's time) at `start`, for the caller to
   // fill; the later word wins.
   Change& record_at(sim::Time start);
+  [[gnu::noinline]] void drop_from(sim::Time start);
   void pass_on(const Change& change);
   void tell_far_end();  // the far end's present condition, then what is still on its way
   sim::Scheduler& scheduler_;

@@ -55,7 +55,7 @@ class CircularQueue {
     ++size_;
     return back();
   }
-  void grow() {
+  [[gnu::noinline, gnu::cold]] void grow() {  // rare: kept out of the callers' code
     std::vector<T> bigger(items_.empty() ? 8 : 2 * items_.size());
     for (std::size_t i = 0; i < size_; ++i) bigger[i] = std::move((*this)[i]);
     items_ = std::move(bigger);
