@@ -107,9 +107,13 @@ void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time
   }
   const bool dropped = drop_announced_from(line_, at);
   line_.push_back(RxdSegment::of(at, condition, period));
-  for (Output& out : outputs_) {
-    if (out.view.mode == Mode::Line && out.listener) {
-      out.listener->line_condition(at, condition, period);
+  if (lone_follower_ != nullptr) {
+    lone_follower_->line_condition(at, condition, period);
+  } else {
+    for (Output& out : outputs_) {
+      if (out.view.mode == Mode::Line && out.listener) {
+        out.listener->line_condition(at, condition, period);
+      }
     }
   }
   if (dropped || darkness_changes_at_back()) plan_pins();
@@ -119,8 +123,12 @@ void TxdOutputs::line_burst(const LineBurst& burst) {
   prune();
   const bool dropped = drop_announced_from(line_, burst.start);
   line_.push_back(RxdSegment::of(burst));
-  for (Output& out : outputs_) {
-    if (out.view.mode == Mode::Line && out.listener) out.listener->line_burst(burst);
+  if (lone_follower_ != nullptr) {  // the usual case: one fibre behind the node
+    lone_follower_->line_burst(burst);
+  } else {
+    for (Output& out : outputs_) {
+      if (out.view.mode == Mode::Line && out.listener) out.listener->line_burst(burst);
+    }
   }
   if (dropped || darkness_changes_at_back()) plan_pins();
 }

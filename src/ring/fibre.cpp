@@ -58,18 +58,30 @@ void Fibre::Input::line_burst(const LineBurst& burst) {
   if (!burst.bits || burst.bit_period <= 0) {
     throw std::invalid_argument("Fibre input: a burst needs bits and a bit period > 0");
   }
-  Change c;
+  Fibre& f = fibre_;
+  f.check_not_past(burst.start);
+  // Read first: `burst` may live in this history (a TxD looped back to its own RxD).
+  const sim::Time start = burst.start + f.delay_;
+  const sim::Time period = burst.bit_period;
+  SharedBits bits = f.errors_.enabled() ? f.errors_.apply(burst.bits) : burst.bits;
+  Change& c = f.record_at(start);
   c.is_burst = true;
-  c.burst = burst;
-  fibre_.take(std::move(c));
+  c.burst.start = start;
+  c.burst.bit_period = period;
+  c.burst.bits = std::move(bits);
+  if (!f.broken_) f.pass_on(c);
+}
+
+void Fibre::check_not_past(sim::Time at) const {
+  const sim::Time now = scheduler_.now();
+  if (at < now) {
+    throw std::invalid_argument("Fibre input: a change at " + std::to_string(at) +
+                                " ps is before now (" + std::to_string(now) + " ps)");
+  }
 }
 
 void Fibre::take(Change change) {
-  const sim::Time now = scheduler_.now();
-  if (change.burst.start < now) {
-    throw std::invalid_argument("Fibre input: a change at " + std::to_string(change.burst.start) +
-                                " ps is before now (" + std::to_string(now) + " ps)");
-  }
+  check_not_past(change.burst.start);
   change.burst.start += delay_;
   if (change.is_burst && errors_.enabled()) change.burst.bits = errors_.apply(change.burst.bits);
   record_at(change.burst.start) = std::move(change);

@@ -71,7 +71,8 @@ class Fibre {
     chip::LineCondition condition = chip::LineCondition::Dark;
     chip::LineBurst burst;
   };
-  void take(Change change);  // from the input, time already moved by the delay
+  void take(Change change);  // a condition from the input (its time still the input's)
+  void check_not_past(sim::Time at) const;  // std::invalid_argument for a time before now
   // A new last change of the history (the far end's time) at `start`, for the caller to
   // fill; the later word wins.
   Change& record_at(sim::Time start);
