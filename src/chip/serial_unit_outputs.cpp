@@ -122,7 +122,7 @@ void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time
 void TxdOutputs::line_burst(const LineBurst& burst) {
   prune();
   const bool dropped = drop_announced_from(line_, burst.start);
-  line_.push_back(RxdSegment::of(burst));
+  append_burst(line_, burst, burst.start);
   if (lone_follower_ != nullptr) {  // the usual case: one fibre behind the node
     lone_follower_->line_burst(burst);
   } else {
@@ -144,7 +144,7 @@ bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineB
 void TxdOutputs::absorb(const LineBurst& burst) {
   expect_absorbed_in_order("TxD", line_.back().since, burst.start);
   prune();
-  line_.push_back(RxdSegment::of(burst));
+  append_burst(line_, burst, burst.start);
 }
 
 // The pins change only where the line goes dark or lights up; an announcement that does

@@ -63,7 +63,8 @@ void SerialRepeater::input(const RxdSegment& segment) {
   // The later word wins (line.hpp).
   drop_announced_from(background_, at);
   prune();
-  RxdSegment& out = background_.emplace_back(segment);
+  RxdSegment& out = background_.emplace_back();
+  out = segment;
   out.since = at;
   if (own_.empty()) {  // nothing of its own in the way: straight on (the usual case)
     if (out.is_burst) return unit_.outputs().line_burst(out.burst());
@@ -85,8 +86,7 @@ bool SerialRepeater::pass_through(const LineBurst& burst, sim::Time leaves, Line
 void SerialRepeater::absorb(const LineBurst& burst, sim::Time leaves) {
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
   prune();
-  RxdSegment& s = background_.emplace_back(RxdSegment::of(burst));
-  s.since = leaves;
+  append_burst(background_, burst, leaves);
   unit_.outputs().absorb(LineBurst{leaves, burst.bit_period, burst.bits});
 }
 

@@ -57,6 +57,18 @@ inline void drop_replaced_by(Line& line, sim::Time now) {
   while (line.size() > 1 && line[1].since <= now) line.pop_front();
 }
 
+// Appends `burst` to a line (repeater, TxD) as a segment from `since`, built in its slot
+// rather than copied in: at every hop.
+template <class Line>
+inline void append_burst(Line& line, const LineBurst& burst, sim::Time since) {
+  RxdSegment& s = line.emplace_back();
+  s.is_burst = true;
+  s.condition = LineCondition::Idle;
+  s.since = since;
+  s.period = burst.bit_period;
+  s.bits = burst.bits;
+}
+
 // Lazy hops (docs/serial-and-ring.md): a lazy burst is booked into `line` (a name for the
 // message) after the change announced last there, at `last`; every other way into the line
 // takes lazy bursts in first, so one at or before `last` is a missed trigger:
