@@ -1,10 +1,12 @@
-// Review of d1d5dec..176fc1d (lazy_report_due / prune_lazy / FrameStates): differential
+// Lazy bursts left waiting by plans that want none of their reports (docs/serial-and-ring.md,
+// "Lazy hops" and "Absorbing": the results are those of the full path): differential
 // scenarios, lazy hops on and off, with a ReceiveInterest the test controls: the interest
 // switched on while bursts of 1-4 frames wait lazily, plans that leave them lazy followed by
 // each trigger (RECACT read, a cut, rate, SWRST, REPON, a TxD joining, an own telegram, a
 // superseding burst, a handler or the interest removed and restored), and the error of a
-// ring where every node repeats. SERCON_REVIEW_DUMP=file writes every full-path log there,
-// to compare two builds (d1d5dec and 176fc1d gave byte-identical dumps).
+// ring where every node repeats ("Depth guard"). Written as a review of the change that let
+// plans leave bursts lazy; SERCON_REVIEW_DUMP=file writes every full-path log there, to
+// compare two builds (before and after that change gave byte-identical dumps).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -90,7 +92,8 @@ std::vector<std::string> run(bool lazy, int frames, Time switch_bits, int mode) 
   const Time base = s.now() + 10 * kBit;
   const chip::SharedBits bits = frames_bits(frames);
   const Time len = static_cast<Time>(bits->size()) + 20;
-  for (int i = 0; i < 12; ++i) u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
+  for (int i = 0; i < 12; ++i)
+    u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
   s.run_until(base + switch_bits * kBit / 4);
   hops = u.lazy_hops_taken();
   waiting = u.receiver().lazy_bursts_waiting();
@@ -110,7 +113,8 @@ std::vector<std::string> run(bool lazy, int frames, Time switch_bits, int mode) 
     u.interest_changed();
   }
   s.run_until(base + 14 * len * kBit);
-  for (const auto& e : sink.events) log.push_back("sink " + std::to_string(e.now) + " " + std::to_string(e.at));
+  for (const auto& e : sink.events)
+    log.push_back("sink " + std::to_string(e.now) + " " + std::to_string(e.at));
   return log;
 }
 
@@ -123,7 +127,8 @@ TEST(LazyHopsReview, InterestSwitchedOnWhileBurstsWaitReportsTheSame) {
           run(true, frames, sw, mode);
           EXPECT_GT(waiting, 1u);  // bursts were still lazy when the interest changed
         }
-        dump(b, "frames " + std::to_string(frames) + " mode " + std::to_string(mode) + " sw " + std::to_string(sw));
+        dump(b, "frames " + std::to_string(frames) + " mode " + std::to_string(mode) + " sw " +
+                    std::to_string(sw));
         ASSERT_EQ(a, b) << "frames " << frames << " mode " << mode << " switch " << sw;
       }
     }
@@ -173,24 +178,47 @@ std::vector<std::string> pulses_then(bool lazy, int frames, Time when, int actio
   const Time base = s.now() + 10 * kBit;
   const chip::SharedBits bits = frames_bits(frames);
   const Time len = static_cast<Time>(bits->size()) + 20;
-  for (int i = 0; i < 12; ++i) u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
-  for (Time k = 1; k < 12 * len / 11; ++k) s.at(base + k * 11 * kBit, [&] { u.interest_changed(); });
+  for (int i = 0; i < 12; ++i)
+    u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
+  for (Time k = 1; k < 12 * len / 11; ++k)
+    s.at(base + k * 11 * kBit, [&] { u.interest_changed(); });
   s.at(base + when * kBit / 4, [&] {
     waiting = std::max(waiting, u.receiver().lazy_bursts_waiting());
     const auto flip = [&c](std::uint8_t a, std::uint16_t m) {
       c.reg_write(a, static_cast<std::uint16_t>(c.regs().value(a) ^ m));
     };
     switch (action) {
-      case 0: log.push_back("recact " + std::to_string(c.reg_read(u.fields().recact.address))); break;
-      case 1: u.rxd().line_condition(s.now() + 7 * kBit, chip::LineCondition::Idle, kBit); break;
-      case 2: flip(0x01, static_cast<std::uint16_t>((1u << 10) | (1u << 6))); break;
-      case 3: c.reg_write(0x01, static_cast<std::uint16_t>(c.regs().value(0x01) | 2u)); break;
-      case 4: flip(0x01, 1u << 3); break;
-      case 5: c.reg_write(0x02, 0x0043); u.connect_txd(2, out2); break;
-      case 6: u.send(u.next_bit_edge(s.now() + 5 * kBit), 0x09, std::vector<std::uint8_t>{1, 2}); break;
-      case 7: u.rxd().line_burst(chip::LineBurst{s.now() + 3 * kBit, kBit, bits}); break;
-      case 8: u.on_telegram_start({}); break;
-      case 9: u.set_interest(nullptr); break;
+      case 0:
+        log.push_back("recact " + std::to_string(c.reg_read(u.fields().recact.address)));
+        break;
+      case 1:
+        u.rxd().line_condition(s.now() + 7 * kBit, chip::LineCondition::Idle, kBit);
+        break;
+      case 2:
+        flip(0x01, static_cast<std::uint16_t>((1u << 10) | (1u << 6)));
+        break;
+      case 3:
+        c.reg_write(0x01, static_cast<std::uint16_t>(c.regs().value(0x01) | 2u));
+        break;
+      case 4:
+        flip(0x01, 1u << 3);
+        break;
+      case 5:
+        c.reg_write(0x02, 0x0043);
+        u.connect_txd(2, out2);
+        break;
+      case 6:
+        u.send(u.next_bit_edge(s.now() + 5 * kBit), 0x09, std::vector<std::uint8_t>{1, 2});
+        break;
+      case 7:
+        u.rxd().line_burst(chip::LineBurst{s.now() + 3 * kBit, kBit, bits});
+        break;
+      case 8:
+        u.on_telegram_start({});
+        break;
+      case 9:
+        u.set_interest(nullptr);
+        break;
       case 10:
         u.on_telegram_start({});
         s.at(s.now() + 23 * kBit, [&] { u.on_telegram_start(start_h); });
@@ -201,11 +229,14 @@ std::vector<std::string> pulses_then(bool lazy, int frames, Time when, int actio
         break;
       case 12:
         u.on_telegram({});
-        s.at(s.now() + 23 * kBit, [&] { u.on_telegram([&](const chip::ReceivedTelegram& t) {
-          log.push_back(std::to_string(s.now()) + " tel2 " + std::to_string(t.start));
-        }); });
+        s.at(s.now() + 23 * kBit, [&] {
+          u.on_telegram([&](const chip::ReceivedTelegram& t) {
+            log.push_back(std::to_string(s.now()) + " tel2 " + std::to_string(t.start));
+          });
+        });
         break;
-      default: break;
+      default:
+        break;
     }
     log.push_back(std::to_string(s.now()) + " action");
   });
@@ -215,8 +246,12 @@ std::vector<std::string> pulses_then(bool lazy, int frames, Time when, int actio
   });
   s.run_until(base + 14 * len * kBit);
   log.push_back("recact end " + std::to_string(c.reg_read(u.fields().recact.address)));
-  for (const auto& e : out1.events) log.push_back("TxD1 " + std::to_string(e.now) + " " + std::to_string(e.at) + " " + std::to_string(e.burst));
-  for (const auto& e : out2.events) log.push_back("TxD2 " + std::to_string(e.now) + " " + std::to_string(e.at) + " " + std::to_string(e.burst));
+  for (const auto& e : out1.events)
+    log.push_back("TxD1 " + std::to_string(e.now) + " " + std::to_string(e.at) + " " +
+                  std::to_string(e.burst));
+  for (const auto& e : out2.events)
+    log.push_back("TxD2 " + std::to_string(e.now) + " " + std::to_string(e.at) + " " +
+                  std::to_string(e.burst));
   return log;
 }
 
@@ -225,8 +260,10 @@ TEST(LazyHopsReview, ActionsAfterPlansThatLeftTheBurstsLazy) {
   for (int frames : {1, 3}) {
     for (int action = 0; action < 13; ++action) {
       for (Time w = 0; w < 4 * 400; w += 5) {
-        const auto a = pulses_then(true, frames, w, action), b = pulses_then(false, frames, w, action);
-        dump(b, "frames " + std::to_string(frames) + " action " + std::to_string(action) + " w " + std::to_string(w));
+        const auto a = pulses_then(true, frames, w, action),
+                   b = pulses_then(false, frames, w, action);
+        dump(b, "frames " + std::to_string(frames) + " action " + std::to_string(action) + " w " +
+                    std::to_string(w));
         ASSERT_EQ(a, b) << "frames " << frames << " action " << action << " when " << w;
       }
     }
