@@ -9,6 +9,7 @@
 #include <deque>
 #include <memory>
 #include <random>
+#include <string>
 
 namespace sercon::sim {
 namespace {
@@ -60,6 +61,19 @@ TEST(serial_CircularQueue, ATakenElementIsLetGoAtOnce) {
   q.clear();
   EXPECT_EQ(b.use_count(), 1);
   EXPECT_TRUE(q.empty());
+}
+
+// push_back of an element of the queue itself, when the buffer is full: the value is built
+// before the buffer moves (circular_queue.hpp), as VectorQueue (a std::vector) does. Before
+// the fix, AddressSanitizer saw a heap-use-after-free here.
+TEST(serial_CircularQueue, PushingAnElementOfItselfWhenFull) {
+  const std::string long_text(100, 'x');  // outside the small-string buffer
+  CircularQueue<std::string> q;
+  for (int i = 0; i < 8; ++i) {  // the first buffer: 8 slots, now full
+    q.push_back(long_text);
+  }
+  q.push_back(q.front());
+  EXPECT_EQ(q.back(), long_text);
 }
 
 }  // namespace

@@ -58,15 +58,18 @@ inline void drop_replaced_by(Line& line, sim::Time now) {
 }
 
 // Appends `burst` to a line (repeater, TxD) as a segment from `since`, built in its slot
-// rather than copied in: at every hop.
+// rather than copied in: at every hop. What it needs of `burst` is taken first: the burst
+// may live in storage the append moves (a fibre's history, say).
 template <class Line>
 inline void append_burst(Line& line, const LineBurst& burst, sim::Time since) {
+  const sim::Time period = burst.bit_period;
+  SharedBits bits = burst.bits;
   RxdSegment& s = line.emplace_back();
   s.is_burst = true;
   s.condition = LineCondition::Idle;
   s.since = since;
-  s.period = burst.bit_period;
-  s.bits = burst.bits;
+  s.period = period;
+  s.bits = std::move(bits);
 }
 
 // Lazy hops (docs/serial-and-ring.md): a lazy burst is booked into `line` (a name for the

@@ -25,11 +25,17 @@ class CircularQueue {
   T& back() { return (*this)[size_ - 1]; }
   const T& back() const { return (*this)[size_ - 1]; }
 
-  void push_back(const T& item) { next_slot() = item; }
-  void push_back(T&& item) { next_slot() = std::move(item); }
-  // With no arguments: the new back is T{} (the free slot as it is).
+  void push_back(const T& item) { emplace_back(item); }
+  void push_back(T&& item) { emplace_back(std::move(item)); }
+  // With no arguments: the new back is T{} (the free slot as it is). An argument may be an
+  // element of this queue: when the buffer must grow, the value is built before it moves.
   template <class... Args>
   T& emplace_back(Args&&... args) {
+    if (size_ == items_.size()) [[unlikely]] {
+      T value(std::forward<Args>(args)...);
+      grow();
+      return next_slot() = std::move(value);
+    }
     T& slot = next_slot();
     if constexpr (sizeof...(Args) > 0) slot = T(std::forward<Args>(args)...);
     return slot;
@@ -49,9 +55,8 @@ class CircularQueue {
   }
 
  private:
-  // The slot after the back, counted in; the buffer doubles when full.
+  // The slot after the back, counted in (the buffer has room: emplace_back grows it).
   T& next_slot() {
-    if (size_ == items_.size()) grow();
     ++size_;
     return back();
   }
