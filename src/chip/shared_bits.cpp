@@ -30,14 +30,15 @@ struct SharedBits::Pool {
 thread_local SharedBits::Pool SharedBits::pool_;
 
 SharedBits::Node* SharedBits::fresh_node() {
-  if (pool_gone || pool_.free.empty()) return new Node();
+  if (!kRecycleBits || pool_gone || pool_.free.empty()) return new Node();
   Node* n = pool_.free.back();
   pool_.free.pop_back();
   return n;
 }
 
 void SharedBits::release(Node* n) noexcept {
-  if (pool_gone || pool_.free.size() >= kMaxPooled || n->bits.size() > kMaxKeptBits) {
+  if (!kRecycleBits || pool_gone || pool_.free.size() >= kMaxPooled ||
+      n->bits.size() > kMaxKeptBits) {
     delete n;
     return;
   }

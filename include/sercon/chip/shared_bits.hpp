@@ -24,6 +24,20 @@
 
 namespace sercon::chip {
 
+// Under AddressSanitizer nothing is recycled: a pointer kept into a released decode must
+// show as a use after free, not read another telegram's frames.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kRecycleBits = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kRecycleBits = false;
+#else
+inline constexpr bool kRecycleBits = true;
+#endif
+#else
+inline constexpr bool kRecycleBits = true;
+#endif
+
 // The frames a receiver finds in one burst. Bit positions count from the burst's first bit.
 struct BurstDecode {
   std::vector<wire::DecodedFrame> frames;
