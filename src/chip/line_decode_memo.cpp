@@ -47,7 +47,8 @@ std::unique_ptr<const BurstDecode> run_decoder(const wire::LineBits& bits, std::
 
 const BurstDecode& decode_whole_burst(const SharedBits& bits) {
   BurstDecodes& d = bits.decodes();
-  d.whole = run_decoder(*bits, bits->size(), 0);
+  // Only on a miss: receivers hold pointers to a decode made before.
+  if (!d.whole) d.whole = run_decoder(*bits, bits->size(), 0);
   return *d.whole;
 }
 
