@@ -177,5 +177,47 @@ TEST(serial_TestGenerator, FollowsTheTmPinsWhileRunning) {
   EXPECT_EQ(b.txd1.last().condition, LineCondition::Idle);
 }
 
+// Counts what it is told, raw (no SettledLine).
+struct JoinCounter final : LineListener {
+  void line_condition(Time, LineCondition, Time) override { ++conditions; }
+  void line_burst(const LineBurst& b) override { starts.push_back(b.start); }
+  int conditions = 0;
+  std::vector<Time> starts;
+};
+
+// On its first burst, connects `late` to TxD `pin` of `unit` (a listener joining from
+// inside a callback of the TxD line).
+struct JoinInCallback final : LineListener {
+  JoinInCallback(SerialUnit& u, unsigned p, LineListener& l) : unit(u), pin(p), late(l) {}
+  void line_condition(Time, LineCondition, Time) override {}
+  void line_burst(const LineBurst&) override {
+    if (done) return;
+    done = true;
+    unit.connect_txd(pin, late);
+  }
+  SerialUnit& unit;
+  unsigned pin;
+  LineListener& late;
+  bool done = false;
+};
+
+// TxD2 and TxD3 follow the line (TxD1 off). The only listener, on TxD2, connects another to
+// TxD3 while it is told of a burst. The newcomer is told the line as it joins, the burst
+// included (tell_line), and not told that burst a second time (decision,
+// docs/serial-and-ring.md "TxD1-6": each announcement is heard once). Before
+// the lone follower (d1d5dec) the walk over the six outputs told it twice.
+TEST(serial_TxdOutputs, AListenerJoiningInsideACallbackIsToldTheBurstOnce) {
+  testing::SerialBench b;
+  b.chip->reg_write(kSerCtrl, static_cast<std::uint16_t>((1u << 1) | (1u << 2) | kTxLight));
+  JoinCounter late;
+  JoinInCallback hook(b.unit, 3, late);
+  b.unit.connect_txd(2, hook);
+  const Time t = b.period();
+  const Time end = b.unit.send(10 * t, 0x01, std::vector<std::uint8_t>{0x11, 0x22});
+  b.run_to(end + 20 * t);
+  ASSERT_TRUE(hook.done);
+  EXPECT_EQ(late.starts, (std::vector<Time>{10 * t}));
+}
+
 }  // namespace
 }  // namespace sercon::chip
