@@ -39,6 +39,8 @@ struct ReceivedTelegram {
 // What the telegram processor would act on in its present state. The receiver spends an
 // event only on reports it wants; the processor calls SerialUnit::interest_changed()
 // whenever its answers may change (its list walk moved on, a telegram was accepted, reset).
+// An answer must only read the processor's own state: the receiver asks while it walks its
+// timeline, and a call back into the serial unit (a RECACT read, say) could change it.
 class ReceiveInterest {
  public:
   virtual ~ReceiveInterest() = default;
