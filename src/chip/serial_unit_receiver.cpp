@@ -168,10 +168,11 @@ void SerialReceiver::absorb_waiting() {
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.
   struct LetGo {
-    sim::VectorQueue<LazyBurst>& lazy;
+    sim::CircularQueue<LazyBurst>& lazy;
     ~LetGo() { lazy.clear(); }
   } let_go{lazy_};
-  for (const LazyBurst& lazy : lazy_) {
+  for (std::size_t i = 0; i < lazy_.size(); ++i) {
+    const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.burst;
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, b.start);
     prune();
@@ -495,8 +496,8 @@ void SerialReceiver::plan_reports() {
 // the other kind done for good: that is left to it.
 bool SerialReceiver::lazy_report_due(sim::Time now) const {
   if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
-  for (const LazyBurst& lazy : lazy_) {
-    const LineBurst& b = lazy.burst;
+  for (std::size_t i = 0; i < lazy_.size(); ++i) {
+    const LineBurst& b = lazy_[i].burst;
     if (b.end() + report_lag(b.bit_period) < now) continue;  // its reports are past
     for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
       const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;

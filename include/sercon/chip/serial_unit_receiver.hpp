@@ -25,8 +25,8 @@
 #include "sercon/chip/line_decode_memo.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
+#include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
-#include "sercon/sim/vector_queue.hpp"
 
 namespace sercon::chip {
 
@@ -200,7 +200,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     LineBurst burst;
     sim::Time leaves = 0;
   };
-  sim::VectorQueue<LazyBurst> lazy_;
+  sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
