@@ -133,14 +133,6 @@ void TxdOutputs::line_burst(const LineBurst& burst) {
   if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
-bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
-  LineListener* only = lone_follower_;
-  // Nothing announced at or after it to drop, and no change between dark and light (the
-  // pins' plan stays as it is): what line_burst() would do is only to keep it.
-  if (only == nullptr || line_.back().since >= burst.start || is_dark(line_.back())) return false;
-  return only->pass_through(burst, next, out);
-}
-
 void TxdOutputs::absorb(const LineBurst& burst) {
   expect_absorbed_in_order("TxD", line_.back().since, burst.start);
   prune();

@@ -73,16 +73,6 @@ void SerialRepeater::input(const RxdSegment& segment) {
   emit_from(at);
 }
 
-bool SerialRepeater::pass_through(const LineBurst& burst, sim::Time leaves, LineListener*& next,
-                                  LineBurst& out) {
-  if (!repon_ || unit_.bit_period() == 0) return false;
-  // What prune() would leave: no own telegram not yet over (they end in order), and the
-  // background never pruned empty. Nothing is kept, so nothing needs pruning here.
-  if (!own_.empty() && own_.back().end() > unit_.chip().scheduler().now()) return false;
-  if (background_.empty() || background_.back().since >= leaves) return false;
-  return unit_.outputs().pass_through(LineBurst{leaves, burst.bit_period, burst.bits}, next, out);
-}
-
 void SerialRepeater::absorb(const LineBurst& burst, sim::Time leaves) {
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
   prune();

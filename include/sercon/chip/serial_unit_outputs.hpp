@@ -39,7 +39,8 @@ class TxdOutputs {
   // burst is announced after everything before it, the listener may take it and hand it on
   // (LineListener::pass_through); the line itself takes the burst later, by absorb(), and
   // until then nothing else here may read it (the receiver's absorb_lazy() comes first).
-  bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out);
+  // Inline (serial_unit_pass_through.hpp).
+  inline bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out);
   // A burst passed through before: into the line as line_burst() would, no listener told.
   void absorb(const LineBurst& burst);
 

@@ -1,0 +1,35 @@
+// The repeater's and TxD's stages of a lazy hop (docs/serial-and-ring.md, "Lazy hops"),
+// inline for the one caller, SerialReceiver::try_lazy_hop: asked at every hop of a lazy
+// chain (~32 000 a cycle with 254 slaves), where two calls per hop cost as much as the checks.
+#pragma once
+
+#include "sercon/chip/chip.hpp"
+#include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/serial_unit_outputs.hpp"
+#include "sercon/chip/serial_unit_repeater.hpp"
+
+namespace sercon::chip {
+
+inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
+  LineListener* only = lone_follower_;
+  // Nothing announced at or after it to drop, and no change between dark and light (the
+  // pins' plan stays as it is): what line_burst() would do is only to keep it.
+  if (only == nullptr) return false;
+  const RxdSegment& last = line_.back();
+  if (last.since >= burst.start || (!last.is_burst && last.condition == LineCondition::Dark)) {
+    return false;
+  }
+  return only->pass_through(burst, next, out);
+}
+
+inline bool SerialRepeater::pass_through(const LineBurst& burst, sim::Time leaves,
+                                         LineListener*& next, LineBurst& out) {
+  if (!repon_ || unit_.bit_period() == 0) return false;
+  // What prune() would leave: no own telegram not yet over (they end in order), and the
+  // background never pruned empty. Nothing is kept, so nothing needs pruning here.
+  if (!own_.empty() && own_.back().end() > unit_.chip().scheduler().now()) return false;
+  if (background_.empty() || background_.back().since >= leaves) return false;
+  return unit_.outputs().pass_through(LineBurst{leaves, burst.bit_period, burst.bits}, next, out);
+}
+
+}  // namespace sercon::chip
