@@ -89,7 +89,8 @@ void Fibre::take(Change change) {
 }
 
 // The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
-Fibre::Change& Fibre::record_at(sim::Time start) {
+// Inline: every hop, lazy or not, books a burst here.
+inline Fibre::Change& Fibre::record_at(sim::Time start) {
   if (!history_.empty() && history_.back().burst.start >= start) drop_from(start);
   const sim::Time now = scheduler_.now();
   while (history_.size() > 1 && history_[1].burst.start <= now) history_.pop_front();
