@@ -120,7 +120,7 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   return false;
 }
 
-bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
+inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   if (!lazy_hops_ || chain_depth >= kMaxChain || !unit_.running()) return false;
   const sim::Time now = unit_.chip().scheduler().now();
   if (b.bit_period != unit_.bit_period() || b.start <= now) return false;
@@ -153,9 +153,13 @@ bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   return true;
 }
 
+inline void SerialReceiver::prune_lazy(sim::Time now) {
+  if (lazy_.size() > 1 && lazy_[1].leaves <= now) drop_lazy_over(now);  // mostly not
+}
+
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
 // RxD too) and this one's reports would be past. The full path would have dropped them.
-void SerialReceiver::drop_lazy_over(sim::Time now) {
+inline void SerialReceiver::drop_lazy_over(sim::Time now) {
   while (lazy_.size() > 1 && lazy_[1].leaves <= now) {
     const LineBurst& front = lazy_.front().burst;
     if (front.end() + report_lag(front.bit_period) >= now) return;

@@ -74,8 +74,8 @@ class Fibre {
   void take(Change change);  // a condition from the input (its time still the input's)
   void check_not_past(sim::Time at) const;  // std::invalid_argument for a time before now
   // A new last change of the history (the far end's time) at `start`, for the caller to
-  // fill; the later word wins.
-  Change& record_at(sim::Time start);
+  // fill; the later word wins. Inline (fibre.cpp, its only callers).
+  inline Change& record_at(sim::Time start);
   [[gnu::noinline]] void drop_from(sim::Time start);
   void pass_on(const Change& change);
   void tell_far_end();  // the far end's present condition, then what is still on its way
