@@ -5,6 +5,7 @@
 #include "sercon/chip/line_length.hpp"
 #include "sercon/chip/serial_unit_monitor.hpp"
 #include "sercon/chip/serial_unit_outputs.hpp"
+#include "sercon/chip/serial_unit_pass_through.hpp"
 #include "sercon/chip/serial_unit_receiver.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
 #include "sercon/chip/serial_unit_transmitter.hpp"

@@ -6,6 +6,7 @@
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
 #include "sercon/chip/serial_unit_outputs.hpp"
+#include "sercon/chip/serial_unit_pass_through.hpp"
 #include "sercon/chip/serial_unit_receiver.hpp"
 
 namespace sercon::chip {
@@ -32,12 +33,6 @@ void SerialRepeater::release() {
     background_.push_back(RxdSegment::of(now, LineCondition::Idle, unit_.bit_period()));
   }
   emit_from(now);
-}
-
-sim::Time SerialRepeater::forward_time(sim::Time t) const {
-  const sim::Time sclk = sclk_period_;
-  const sim::Time due = t + SerialUnit::kRepeaterDelayBits * unit_.bit_period();
-  return (due + sclk - 1) / sclk * sclk;
 }
 
 // Switched on: the line takes up what RxD carries now at once (a telegram half-way through

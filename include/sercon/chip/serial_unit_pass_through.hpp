@@ -1,6 +1,7 @@
 // The repeater's and TxD's stages of a lazy hop (docs/serial-and-ring.md, "Lazy hops"),
-// inline for the one caller, SerialReceiver::try_lazy_hop: asked at every hop of a lazy
-// chain (~32 000 a cycle with 254 slaves), where two calls per hop cost as much as the checks.
+// inline for the one caller, SerialReceiver::try_lazy_hop, and the repeater's forward time:
+// asked at every hop of a lazy chain (~32 000 a cycle with 254 slaves), where a call per
+// stage costs as much as its checks.
 #pragma once
 
 #include "sercon/chip/chip.hpp"
@@ -9,6 +10,12 @@
 #include "sercon/chip/serial_unit_repeater.hpp"
 
 namespace sercon::chip {
+
+inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
+  const sim::Time sclk = sclk_period_;
+  const sim::Time due = t + SerialUnit::kRepeaterDelayBits * unit_.bit_period();
+  return (due + sclk - 1) / sclk * sclk;
+}
 
 inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
   LineListener* only = lone_follower_;

@@ -41,7 +41,7 @@ class SerialRepeater {
   void absorb(const LineBurst& burst, sim::Time leaves);
 
   // When something that reaches RxD at `t` leaves on TxD.
-  sim::Time forward_time(sim::Time t) const;
+  inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp
   bool on() const { return repon_; }
 
  private:
