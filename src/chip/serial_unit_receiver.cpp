@@ -143,8 +143,10 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   // TxD comes back to its own RxD), which may move it.
   LazyBurst kept{b, leaves};
   LineListener* next = nullptr;
-  LineBurst out;
-  if (!repeater.pass_through(kept.burst, leaves, next, out)) return false;
+  // The burst as it leaves TxD; the stages read it all before they set it to the burst as
+  // it reaches `next` (no temporary per stage).
+  LineBurst out{leaves, b.bit_period, b.bits};
+  if (!repeater.pass_through(out, next, out)) return false;
   lazy_.push_back(std::move(kept));
   ++lazy_hops_taken_;
   prune_lazy(now);

@@ -108,7 +108,8 @@ bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& nex
   Fibre& f = fibre_;
   if (f.broken_ || f.errors_.enabled() || f.output_ == nullptr) return false;
   if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
-  // Read first: `burst` may live in this history (a TxD looped back to its own RxD).
+  // Read first: `burst` may live in this history (a TxD looped back to its own RxD), and
+  // `out` may be `burst` itself (the lazy hop's one burst).
   const sim::Time start = burst.start + f.delay_;
   const sim::Time period = burst.bit_period;
   SharedBits bits = burst.bits;

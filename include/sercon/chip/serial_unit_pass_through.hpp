@@ -29,14 +29,15 @@ inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next
   return only->pass_through(burst, next, out);
 }
 
-inline bool SerialRepeater::pass_through(const LineBurst& burst, sim::Time leaves,
-                                         LineListener*& next, LineBurst& out) {
+inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*& next,
+                                         LineBurst& out) {
+  const sim::Time leaves = leaving.start;
   if (!repon_ || unit_.bit_period() == 0) return false;
   // What prune() would leave: no own telegram not yet over (they end in order), and the
   // background never pruned empty. Nothing is kept, so nothing needs pruning here.
   if (!own_.empty() && own_.back().end() > unit_.chip().scheduler().now()) return false;
   if (background_.empty() || background_.back().since >= leaves) return false;
-  return unit_.outputs().pass_through(LineBurst{leaves, burst.bit_period, burst.bits}, next, out);
+  return unit_.outputs().pass_through(leaving, next, out);
 }
 
 }  // namespace sercon::chip
