@@ -60,17 +60,45 @@ chip::SharedBits frames_bits(int n) {
   return chip::share_bits(enc.take());
 }
 
+// A chip at 16 Mbit/s repeating (REPON) onto TxD1 with its light on, lazy hops on or off.
+struct RepeatingNode {
+  explicit RepeatingNode(bool lazy) : c(s, config_at_mbit(16)), u(*c.unit<chip::SerialUnit>()) {
+    u.set_lazy_hops(lazy);
+    set_bits(c, u.fields().repon, true);
+    c.reg_write(0x02, 0x0041);
+  }
+  sim::Scheduler s;
+  chip::Chip c;
+  chip::SerialUnit& u;
+};
+
+// Idle at the bit rate, then twelve bursts of `frames` frames announced ahead, 20 bits
+// apart; gives the first burst's start, the bits from one start to the next and the bursts'
+// bits.
+struct Bursts {
+  Time base, len;
+  chip::SharedBits bits;
+};
+Bursts announce_twelve_bursts(sim::Scheduler& s, chip::SerialUnit& u, int frames) {
+  s.run_until(1000 * kBit);
+  u.rxd().line_condition(s.now(), chip::LineCondition::Idle, kBit);
+  s.run_until(s.now() + 100 * kBit);
+  const Time base = s.now() + 10 * kBit;
+  const chip::SharedBits bits = frames_bits(frames);
+  const Time len = static_cast<Time>(bits->size()) + 20;
+  for (int i = 0; i < 12; ++i)
+    u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
+  return {base, len, bits};
+}
+
 // mode bits: 1 = start wanted when switched on, 2 = telegram wanted, 4 = drop a handler
 // instead of switching interest, 8 = switch back off later.
 std::uint64_t hops = 0;
 std::size_t waiting = 0;
 std::vector<std::string> run(bool lazy, int frames, Time switch_bits, int mode) {
-  sim::Scheduler s;
-  chip::Chip c(s, config_at_mbit(16));
-  chip::SerialUnit& u = *c.unit<chip::SerialUnit>();
-  u.set_lazy_hops(lazy);
-  set_bits(c, u.fields().repon, true);
-  c.reg_write(0x02, 0x0041);
+  RepeatingNode node(lazy);
+  sim::Scheduler& s = node.s;
+  chip::SerialUnit& u = node.u;
   testing::Recorder sink(s);
   Fibre f(s, 10.0);
   f.connect(sink);
@@ -86,14 +114,8 @@ std::vector<std::string> run(bool lazy, int frames, Time switch_bits, int mode) 
     log.push_back(std::to_string(s.now()) + " tel " + std::to_string(t.start) + " " +
                   std::to_string(t.end));
   });
-  s.run_until(1000 * kBit);
-  u.rxd().line_condition(s.now(), chip::LineCondition::Idle, kBit);
-  s.run_until(s.now() + 100 * kBit);
-  const Time base = s.now() + 10 * kBit;
-  const chip::SharedBits bits = frames_bits(frames);
-  const Time len = static_cast<Time>(bits->size()) + 20;
-  for (int i = 0; i < 12; ++i)
-    u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
+  const Bursts bursts = announce_twelve_bursts(s, u, frames);
+  const Time base = bursts.base, len = bursts.len;
   s.run_until(base + switch_bits * kBit / 4);
   hops = u.lazy_hops_taken();
   waiting = u.receiver().lazy_bursts_waiting();
@@ -144,12 +166,10 @@ namespace {
 // Plans that keep the bursts lazy (interest_changed every 11 bits, nothing wanted), an
 // action at `when` (quarter bits), then everything wanted 50 bits later.
 std::vector<std::string> pulses_then(bool lazy, int frames, Time when, int action) {
-  sim::Scheduler s;
-  chip::Chip c(s, config_at_mbit(16));
-  chip::SerialUnit& u = *c.unit<chip::SerialUnit>();
-  u.set_lazy_hops(lazy);
-  set_bits(c, u.fields().repon, true);
-  c.reg_write(0x02, 0x0041);
+  RepeatingNode node(lazy);
+  sim::Scheduler& s = node.s;
+  chip::Chip& c = node.c;
+  chip::SerialUnit& u = node.u;
   testing::Recorder out1(s), out2(s);
   Fibre f(s, 10.0);
   f.connect(out1);
@@ -172,14 +192,9 @@ std::vector<std::string> pulses_then(bool lazy, int frames, Time when, int actio
     log.push_back(std::to_string(s.now()) + " tel " + std::to_string(t.start) + " " +
                   std::to_string(t.end) + " " + std::to_string(t.detected));
   });
-  s.run_until(1000 * kBit);
-  u.rxd().line_condition(s.now(), chip::LineCondition::Idle, kBit);
-  s.run_until(s.now() + 100 * kBit);
-  const Time base = s.now() + 10 * kBit;
-  const chip::SharedBits bits = frames_bits(frames);
-  const Time len = static_cast<Time>(bits->size()) + 20;
-  for (int i = 0; i < 12; ++i)
-    u.rxd().line_burst(chip::LineBurst{base + i * len * kBit, kBit, bits});
+  const Bursts bursts = announce_twelve_bursts(s, u, frames);
+  const Time base = bursts.base, len = bursts.len;
+  const chip::SharedBits& bits = bursts.bits;
   for (Time k = 1; k < 12 * len / 11; ++k)
     s.at(base + k * 11 * kBit, [&] { u.interest_changed(); });
   s.at(base + when * kBit / 4, [&] {
