@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "repeating_chip.hpp"
 #include "ring_bench.hpp"
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
@@ -32,36 +33,8 @@ using testing::config_at_mbit;
 
 constexpr Time kBit = 62'500;  // 16 Mbit/s
 
-void set_bits(chip::Chip& c, const chip::FieldRef& f, bool on) {
-  const std::uint16_t v = c.reg_read(f.address);
-  c.reg_write(f.address, static_cast<std::uint16_t>(on ? v | f.mask : v & ~f.mask));
-}
-
-// One chip at 16 Mbit/s with its repeater on and TxD1 driven (0x02 TXOE bit 0, TXLIGHT).
-struct RepeatingChip {
-  explicit RepeatingChip(bool lazy) : c(s, config_at_mbit(16)), u(*c.unit<chip::SerialUnit>()) {
-    u.set_lazy_hops(lazy);
-    set_bits(c, u.fields().repon, true);
-    c.reg_write(0x02, 0x0041);
-  }
-  // RxD idle after 1000 bit times, then `n` telegrams announced at once, `spacing` bit times
-  // apart from `lead` bit times later; returns when the first begins.
-  Time idle_then_telegrams(int n, Time spacing, Time lead) {
-    s.run_until(1000 * kBit);
-    u.rxd().line_condition(s.now(), LineCondition::Idle, kBit);
-    s.run_until(s.now() + lead * kBit);
-    const Time base = s.now() + 10 * kBit;
-    for (int i = 0; i < n; ++i) {
-      u.rxd().line_burst(
-          LineBurst{base + i * spacing * kBit, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
-    }
-    return base;
-  }
-
-  sim::Scheduler s;
-  chip::Chip c;
-  chip::SerialUnit& u;
-};
+using testing::RepeatingChip;
+using testing::set_bits;
 
 // Master + 2 slaves on 1 km fibres, every repeater on, the master's too.
 struct AllRepeatRing {

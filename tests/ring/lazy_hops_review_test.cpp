@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "repeating_chip.hpp"
 #include "ring_bench.hpp"
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
@@ -40,10 +41,7 @@ void dump(const std::vector<std::string>& log, const std::string& what) {
 using testing::config_at_mbit;
 constexpr Time kBit = 62'500;
 
-void set_bits(chip::Chip& c, const chip::FieldRef& f, bool on) {
-  const std::uint16_t v = c.reg_read(f.address);
-  c.reg_write(f.address, static_cast<std::uint16_t>(on ? v | f.mask : v & ~f.mask));
-}
+using testing::set_bits;
 
 struct Want final : chip::ReceiveInterest {
   bool start = false, tel = false;
@@ -59,18 +57,6 @@ chip::SharedBits frames_bits(int n) {
   }
   return chip::share_bits(enc.take());
 }
-
-// A chip at 16 Mbit/s repeating (REPON) onto TxD1 with its light on, lazy hops on or off.
-struct RepeatingNode {
-  explicit RepeatingNode(bool lazy) : c(s, config_at_mbit(16)), u(*c.unit<chip::SerialUnit>()) {
-    u.set_lazy_hops(lazy);
-    set_bits(c, u.fields().repon, true);
-    c.reg_write(0x02, 0x0041);
-  }
-  sim::Scheduler s;
-  chip::Chip c;
-  chip::SerialUnit& u;
-};
 
 // Idle at the bit rate, then twelve bursts of `frames` frames announced ahead, 20 bits
 // apart; gives the first burst's start, the bits from one start to the next and the bursts'
@@ -96,13 +82,12 @@ Bursts announce_twelve_bursts(sim::Scheduler& s, chip::SerialUnit& u, int frames
 std::uint64_t hops = 0;
 std::size_t waiting = 0;
 std::vector<std::string> run(bool lazy, int frames, Time switch_bits, int mode) {
-  RepeatingNode node(lazy);
+  testing::RepeatingChip node(lazy);
   sim::Scheduler& s = node.s;
   chip::SerialUnit& u = node.u;
   testing::Recorder sink(s);
   Fibre f(s, 10.0);
-  f.connect(sink);
-  u.connect_txd(1, f.input());
+  node.repeat_into(f, sink);
   std::vector<std::string> log;
   Want want;
   u.set_interest(&want);
@@ -166,14 +151,13 @@ namespace {
 // Plans that keep the bursts lazy (interest_changed every 11 bits, nothing wanted), an
 // action at `when` (quarter bits), then everything wanted 50 bits later.
 std::vector<std::string> pulses_then(bool lazy, int frames, Time when, int action) {
-  RepeatingNode node(lazy);
+  testing::RepeatingChip node(lazy);
   sim::Scheduler& s = node.s;
   chip::Chip& c = node.c;
   chip::SerialUnit& u = node.u;
   testing::Recorder out1(s), out2(s);
   Fibre f(s, 10.0);
-  f.connect(out1);
-  u.connect_txd(1, f.input());
+  node.repeat_into(f, out1);
   std::vector<std::string> log;
   for (const chip::Pin p : {chip::Pin::TxD1, chip::Pin::TxD2, chip::Pin::L_ERRN, chip::Pin::IDLE}) {
     c.pin(p).watch([&log, &s, p](sim::Level l) {
