@@ -1,0 +1,142 @@
+// The receiver's side that takes bursts in (line_burst) and lets a burst this chip does not
+// look at hop lazily to the next receiver (docs/serial-and-ring.md, "Lazy hops"): the
+// conditions, the hop itself, and absorbing the bursts into the timelines when something
+// looks. The timeline and the reports are in serial_unit_receiver.cpp.
+#include <stdexcept>
+#include <string>
+
+#include "sercon/chip/serial_unit_pass_through.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
+#include "sercon/chip/serial_unit_receiver_inline.hpp"
+#include "sercon/chip/serial_unit_repeater.hpp"
+#include "sercon/sim/scoped_count.hpp"
+
+namespace sercon::chip {
+
+using receiver_detail::chain_depth;
+using receiver_detail::kMaxChain;
+
+void SerialReceiver::line_burst(const LineBurst& burst) {
+  if (!burst.bits) throw std::invalid_argument("RxD: a burst without bits");
+  if (burst.bit_period <= 0) {
+    throw std::invalid_argument("RxD: a burst with bit period " + std::to_string(burst.bit_period) +
+                                " ps");
+  }
+  if (try_lazy_hop(burst)) return;
+  absorb_lazy();
+  announce(RxdSegment::of(burst));
+}
+
+// --- lazy hops ------------------------------------------------------------------------------
+
+void SerialReceiver::set_lazy_hops(bool on) {
+  if (!on) absorb_lazy();
+  lazy_hops_ = on;
+}
+
+// What consider() would plan for the burst's frames in the telegram processor's present
+// state. With one handler only, consider() also marks the other kind of report done for
+// good, which a later handler would see: that is left to the full path. Inline: asked at
+// every hop.
+inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
+  if (!on_start_ && !on_telegram_) return false;
+  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
+  for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+    const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
+    if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
+  if (!lazy_hops_ || chain_depth >= kMaxChain || !unit_.running()) return false;
+  const sim::Time now = unit_.chip().scheduler().now();
+  if (b.bit_period != unit_.bit_period() || b.start <= now) return false;
+  // Asked first of the dearer checks: it is the one that fails at a node that reads the
+  // burst (the checks have no effects, so their order is free).
+  if (wants_a_report(b) || !recactn_.idle()) return false;
+  // After everything announced before (nothing superseded or cut) and between good signals
+  // (the line monitor hears nothing): announce() would only keep it.
+  SerialRepeater& repeater = unit_.repeater();
+  const sim::Time leaves = repeater.forward_time(b.start);
+  if (!lazy_.empty()) {
+    const LazyBurst& last = lazy_.back();
+    if (last.burst.end() > b.start || last.leaves >= leaves) return false;
+  } else {
+    const Entry& last = timeline_.back();
+    if (last.segment.since >= b.start || !good(last.segment)) return false;
+    if (last.segment.is_burst && b.start < last.cut) return false;
+  }
+  // A copy first: `b` may live in the history of a fibre this hop books into (a node whose
+  // TxD comes back to its own RxD), which may move it.
+  LazyBurst kept{b, leaves};
+  LineListener* next = nullptr;
+  // The burst as it leaves TxD; the stages read it all before they set it to the burst as
+  // it reaches `next` (no temporary per stage).
+  LineBurst out{leaves, b.bit_period, b.bits};
+  if (!repeater.pass_through(out, next, out)) return false;
+  lazy_.push_back(std::move(kept));
+  ++lazy_hops_taken_;
+  prune_lazy(now);
+  const sim::ScopedCount link(chain_depth);
+  next->line_burst(out);
+  return true;
+}
+
+inline void SerialReceiver::prune_lazy(sim::Time now) {
+  if (lazy_.size() > 1 && lazy_[1].leaves <= now) drop_lazy_over(now);  // mostly not
+}
+
+// Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
+// RxD too) and this one's reports would be past. The full path would have dropped them.
+inline void SerialReceiver::drop_lazy_over(sim::Time now) {
+  while (lazy_.size() > 1 && lazy_[1].leaves <= now) {
+    const LineBurst& front = lazy_.front().burst;
+    if (front.end() + report_lag(front.bit_period) >= now) return;
+    lazy_.pop_front();
+  }
+}
+
+void SerialReceiver::absorb_waiting() {
+  prune_lazy(unit_.chip().scheduler().now());  // a burst over by now would only be pruned
+  // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
+  // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
+  // node does not throw again at every later absorb.
+  struct LetGo {
+    sim::CircularQueue<LazyBurst>& lazy;
+    ~LetGo() { lazy.clear(); }
+  } let_go{lazy_};
+  for (std::size_t i = 0; i < lazy_.size(); ++i) {
+    const LazyBurst& lazy = lazy_[i];
+    const LineBurst& b = lazy.burst;
+    expect_absorbed_in_order("RxD", timeline_.back().segment.since, b.start);
+    prune();
+    take(append(RxdSegment::of(b)));
+    unit_.repeater().absorb(b, lazy.leaves);
+  }
+}
+
+// Whether the lazy bursts must be absorbed for a plan: one of them has a report the telegram
+// processor wants now and whose time may be still to come. Otherwise the full path would plan
+// none of theirs now (a report not wanted stays eligible, and is asked again at the next
+// plan, as here), so they can stay lazy: a node that fires a report per telegram it reads
+// need not book each telegram it passes on. With one handler only, the full path marks
+// the other kind done for good: that is left to it.
+bool SerialReceiver::lazy_report_due(sim::Time now) const {
+  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
+  for (std::size_t i = 0; i < lazy_.size(); ++i) {
+    const LineBurst& b = lazy_[i].burst;
+    if (b.end() + report_lag(b.bit_period) < now) continue;  // its reports are past
+    for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+      const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
+      if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace sercon::chip
