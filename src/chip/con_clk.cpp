@@ -24,7 +24,9 @@ ConClk::ConClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
       pin_(std::move(pin)),
       polconclk_(field_ref("POLCONCLK", regs_.variant())),
       end_(time_base.scheduler(), time_base.mclk()) {
-  time_base_.on_cycle_start([this](const CycleStart& start) { plan(start); });
+  time_base_.on_cycle_start(this, [](void* con_clk, const CycleStart& start) {
+    static_cast<ConClk*>(con_clk)->plan(start);
+  });
   regs_.on_change([this](std::uint8_t address) {
     if (address == polconclk_.address) drive();
   });

@@ -20,6 +20,7 @@ constexpr std::uint8_t kTcycstart = 0x14;
 // of the driver's t_start; an asynchronous CYC_CLK edge passes two flip-flops.
 constexpr Edge kMstSyncEdges = 3;
 constexpr Edge kCycClkSyncEdges = 2;
+constexpr std::size_t kKeptRecognitions = 8;
 
 }  // namespace
 
@@ -45,7 +46,9 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
       mst_send_(time_base.scheduler(), time_base.mclk()) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.watch([this](sim::Level level) { on_cyc_clk(level); });
-  time_base_.on_cycle_start([this](const CycleStart& start) { on_cycle_start(start); });
+  time_base_.on_cycle_start(this, [](void* control, const CycleStart& start) {
+    static_cast<CycleControl*>(control)->on_cycle_start(start);
+  });
   time_base_.on_divider_change(
       [this](Edge edge, std::int64_t period) { on_divider_change(edge, period); });
 }
@@ -120,7 +123,11 @@ void CycleControl::on_register_change(std::uint8_t address) {
 }
 
 void CycleControl::after_edges(sim::Time from, Edge edges, sim::Scheduler::Action action) {
-  std::erase_if(recognitions_, [this](auto id) { return !scheduler_.pending(id); });
+  // Ids of events that ran stay until a few have gathered (cancelling them is harmless):
+  // one MST per cycle need not scan the list each time.
+  if (recognitions_.size() >= kKeptRecognitions) {
+    std::erase_if(recognitions_, [this](auto id) { return !scheduler_.pending(id); });
+  }
   const Edge edge = time_base_.mclk().first_at_or_after(from) + edges;
   recognitions_.push_back(scheduler_.at(time_base_.mclk().time_of(edge), action, this));
 }
@@ -195,7 +202,9 @@ void CycleControl::send_mst() {
 void CycleControl::on_cycle_start(const CycleStart& start) {
   const bool slave_cycle = mode_ == Mode::Slave && start.kind != CycleKind::Master;
   const bool synced_master = mode_ == Mode::MasterCycClk && start.kind == CycleKind::Master;
-  if (slave_cycle || synced_master) window_.expect_next(start.kind == CycleKind::Substitute);
+  // The first cycle-start listener (registered first, in the constructor): `start` is
+  // still the counter and TSCYC now.
+  if (slave_cycle || synced_master) window_.expect_next(start);
 }
 
 void CycleControl::on_divider_change(Edge edge, std::int64_t period) {

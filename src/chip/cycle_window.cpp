@@ -19,17 +19,17 @@ CycleWindow::CycleWindow(TimeBase& time_base, Interrupts& interrupts,
 
 // TSCYC = 0 means the cycle time is not programmed: nothing is expected, so no window
 // closes empty and nothing free-wheels.
-void CycleWindow::expect_next(bool after_miss) {
+void CycleWindow::expect_next(const CycleStart& start) {
   forget();
-  tscyc_ = time_base_.tscyc();
+  tscyc_ = start.tscyc;
   if (tscyc_ == 0) return;
   const RegisterFile& regs = time_base_.regs();
   opens_ = tscyc_ + signed16(regs.value(kJtscyc1));
   closes_ = tscyc_ + signed16(regs.value(kJtscyc2));
-  state_ = after_miss ? State::Missed : State::Synced;
+  state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
   // A window programmed to close before the counter's start closes at the first step.
   close_event_ =
-      time_base_.at_cycle_time(std::max(closes_, time_base_.count()), &CycleWindow::closes, this);
+      time_base_.at_cycle_time(std::max(closes_, start.count), &CycleWindow::closes, this);
 }
 
 void CycleWindow::closes(void* window) {

@@ -26,7 +26,9 @@ DivClk::DivClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
       poldivclk_(field_ref("POLDIVCLK", regs_.variant())),
       divclkmode_(field_ref("DIVCLKMODE", regs_.variant())),
       end_(time_base.scheduler(), time_base.mclk()) {
-  time_base_.on_cycle_start([this](const CycleStart& start) { plan(start); });
+  time_base_.on_cycle_start(this, [](void* div_clk, const CycleStart& start) {
+    static_cast<DivClk*>(div_clk)->plan(start);
+  });
   // A new polarity shows at once, also on an idle output.
   regs_.on_change([this](std::uint8_t address) {
     if (address == poldivclk_.address) drive();

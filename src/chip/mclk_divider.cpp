@@ -63,11 +63,6 @@ DividerTicks DividerTicks::started_at(Edge start, std::int64_t first_delay, std:
   return ticks;
 }
 
-std::int64_t DividerTicks::count_through(Edge edge) const {
-  if (edge < first_) return base_;
-  return base_ + (edge - first_) / period_ + 1;
-}
-
 void DividerTicks::change_period(Edge now, std::int64_t period) {
   const std::int64_t next = count_through(now) + 1;
   first_ = edge_of(next);

@@ -39,7 +39,9 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
       transmit_(ram_, dma_),
       receive_(ram_, dma_),
       mst_(time_base_, interrupts_, serial_, ram_) {
-  time_base_.on_cycle_start([this](const CycleStart& start) { on_cycle_start(start); });
+  time_base_.on_cycle_start(this, [](void* tp, const CycleStart& start) {
+    static_cast<TelegramProcessor*>(tp)->on_cycle_start(start);
+  });
   cycle_control_.on_send_mst([this] { on_send_mst(); });
   serial_.on_telegram_start(
       [this](sim::Time start, std::uint8_t address) { on_telegram_start(start, address); });

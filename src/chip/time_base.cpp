@@ -89,7 +89,10 @@ void TimeBase::shift_cycle(std::int64_t by) {
 void TimeBase::begin(CycleKind kind) {
   const CycleStart start{kind, count(), tscyc()};
   // Index loop: a listener may add listeners.
-  for (std::size_t i = 0; i < cycle_listeners_.size(); ++i) cycle_listeners_[i](start);
+  for (std::size_t i = 0; i < cycle_listeners_.size(); ++i) {
+    const CycleStartListener& l = cycle_listeners_[i];
+    l.listener(l.context, start);
+  }
 }
 
 // Events due exactly now belong to the step that has just happened in the old cycle and
@@ -132,19 +135,13 @@ TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time, sim::Sched
   return plan(cycle_time, [&](sim::Time when) { return scheduler_.at(when, action, context); });
 }
 
-void TimeBase::cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
-
-std::optional<sim::Time> TimeBase::when(CycleEvent event) const {
-  return scheduler_.when(sim::Scheduler::EventId{event});
-}
-
 std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) const {
   if (!ahead(cycle_time)) return std::nullopt;
   return time_of_step(cycle_time);
 }
 
-void TimeBase::on_cycle_start(std::function<void(const CycleStart&)> listener) {
-  cycle_listeners_.push_back(std::move(listener));
+void TimeBase::on_cycle_start(void* context, CycleListener listener) {
+  cycle_listeners_.push_back(CycleStartListener{listener, context});
 }
 
 void TimeBase::on_divider_change(std::function<void(Edge, std::int64_t)> listener) {

@@ -29,8 +29,9 @@ class CycleWindow {
   CycleWindow(const CycleWindow&) = delete;
   CycleWindow& operator=(const CycleWindow&) = delete;
 
-  // A cycle began now: expect the next event one cycle (TSCYC of the phase) later.
-  void expect_next(bool after_miss);
+  // A cycle began now (`start`, as the time base announced it: its count and TSCYC are
+  // the counter and the cycle time now): expect the next event one cycle later.
+  void expect_next(const CycleStart& start);
   void forget();  // back to Unsynced
   // An MST (slave) or CYC_CLK (master) arrives now: raises the flags it earns. A close
   // due at this very instant is decided first, so the order of equal-time events does

@@ -106,8 +106,11 @@ class DividerTicks {
   static DividerTicks started_at(Edge start, std::int64_t first_delay, std::int64_t period);
 
   std::int64_t period() const { return period_; }
-  // Ticks at edges <= `edge`.
-  std::int64_t count_through(Edge edge) const;
+  // Ticks at edges <= `edge`. Inline: asked at every cycle start and cycle-time event.
+  std::int64_t count_through(Edge edge) const {
+    if (edge < first_) return base_;
+    return base_ + (edge - first_) / period_ + 1;
+  }
   // Edge of tick `k`; meaningful for ticks after the last period change.
   Edge edge_of(std::int64_t k) const { return first_ + (k - base_ - 1) * period_; }
   // MCLKDIV written, registered at edge `now`: ticks up to the first one after `now` keep

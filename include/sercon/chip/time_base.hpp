@@ -82,13 +82,19 @@ class TimeBase : public ChipUnit {
   // The same with `action(context)` (no std::function: for units that arm several
   // events per cycle). `context` must outlive the event.
   CycleEvent at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action, void* context);
-  void cancel(CycleEvent event);
+  void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
-  std::optional<sim::Time> when(CycleEvent event) const;
+  std::optional<sim::Time> when(CycleEvent event) const {
+    return scheduler_.when(sim::Scheduler::EventId{event});
+  }
   // When the step out of `cycle_time` will happen in the running cycle, if it is ahead.
   std::optional<sim::Time> time_of_cycle_time(std::int64_t cycle_time) const;
 
-  void on_cycle_start(std::function<void(const CycleStart&)> listener);
+  // `listener(context, start)` at every cycle start, in the order registered. A function
+  // and a context, not a std::function: the listeners are the chip's units, fixed at
+  // construction, and run at every cycle start of every chip.
+  using CycleListener = void (*)(void* context, const CycleStart& start);
+  void on_cycle_start(void* context, CycleListener listener);
   // MCLKDIV changed, registered at MCLK edge `edge`; `period` is the new MCLKDIV + 1.
   void on_divider_change(std::function<void(Edge edge, std::int64_t period)> listener);
 
@@ -132,7 +138,11 @@ class TimeBase : public ChipUnit {
   DividerTicks free_;         // the free-running divider
   std::vector<Planned> planned_;
   std::size_t prune_at_ = 16;  // planned_ size at which track() drops stale entries
-  std::vector<std::function<void(const CycleStart&)>> cycle_listeners_;
+  struct CycleStartListener {
+    CycleListener listener;
+    void* context;
+  };
+  std::vector<CycleStartListener> cycle_listeners_;
   std::vector<std::function<void(Edge, std::int64_t)>> divider_listeners_;
 };
 

@@ -51,7 +51,13 @@ class Scheduler {
   // Inline: most calls name an event that already ran.
   bool cancel(EventId id) {
     if (live_slot(id) == nullptr) return false;
-    release(static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1));
+    const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
+    // An action's slot holds no callback to release.
+    if (slots_[index].action != nullptr) {
+      free_slot(index);
+    } else {
+      release(index);
+    }
     return true;
   }
   bool pending(EventId id) const { return live_slot(id) != nullptr; }
