@@ -113,13 +113,14 @@ void TimeBase::drop_future_events() {
 
 template <typename Schedule>
 TimeBase::CycleEvent TimeBase::plan(std::int64_t cycle_time, Schedule event_at) {
-  if (!ahead(cycle_time)) return 0;
+  const std::optional<sim::Time> step = step_ahead(cycle_time);
+  if (!step) return 0;
   if (planned_.size() >= prune_at_) {
     std::erase_if(planned_,
                   [this](const Planned& planned) { return !scheduler_.pending(planned.event); });
     prune_at_ = std::max<std::size_t>(16, 2 * planned_.size());
   }
-  const sim::Time when = time_of_step(cycle_time);
+  const sim::Time when = *step;
   const sim::Scheduler::EventId event = event_at(when);
   planned_.push_back(Planned{event, cycle_time, when});
   return event.value;
@@ -136,8 +137,7 @@ TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time, sim::Sched
 }
 
 std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) const {
-  if (!ahead(cycle_time)) return std::nullopt;
-  return time_of_step(cycle_time);
+  return step_ahead(cycle_time);
 }
 
 void TimeBase::on_cycle_start(void* context, CycleListener listener) {

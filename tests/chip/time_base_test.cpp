@@ -266,6 +266,52 @@ TEST(TimeBase, CycleTimeEventsRunAtTheStep) {
   EXPECT_EQ(ran[1], loaded + (3 + 98 * 25) * t);
 }
 
+// docs/timing.md, "Time base": a cycle-time event exists exactly for the steps the counter
+// has not made yet. The time base decides "ahead" from the step's edge time alone (not by
+// counting ticks): at every MCLK edge and just before it, around a restart, on a grid
+// whose period is not whole picoseconds (30 MHz) and after MCLKDIV changes, a step out of
+// c is ahead iff the counter is at most c, and the counter makes it exactly then.
+TEST(TimeBase, AStepIsAheadExactlyWhileTheCounterHasNotMadeIt) {
+  for (const std::int64_t mhz : {25, 30}) {
+    TimingBench b(config_mhz(mhz));
+    const Time t = b.mclk();
+    const auto divider = static_cast<std::uint16_t>(mhz - 1);
+    b.chip.reg_write(kClockDiv, static_cast<std::uint16_t>(5 << 8 | divider));
+    b.chip.reg_write(kTcntst, 3);
+    auto& tb = b.time_base();
+    const auto check_until = [&](Time until) {
+      for (Time edge = b.now() / t; edge * t <= until; edge += 7) {
+        for (const Time at : {edge * t - 1, edge * t, edge * t + 1}) {
+          if (at < b.now()) continue;
+          b.run_to(at);
+          const std::int64_t count = tb.count();
+          for (std::int64_t c = count - 2; c <= count + 2; ++c) {
+            const auto step = tb.time_of_cycle_time(c);
+            ASSERT_EQ(step.has_value(), c >= count) << mhz << " MHz, " << at << " ps, c " << c;
+            if (step) {
+              ASSERT_GT(*step, at) << mhz << " MHz, " << at << " ps, c " << c;
+            }
+          }
+          const auto next = tb.time_of_cycle_time(count);
+          ASSERT_TRUE(next.has_value());
+        }
+      }
+    };
+    b.run_to(4 * kMicrosecond);
+    b.cycles().mst_detected(b.now());
+    check_until(12 * kMicrosecond);
+    b.write_at(12 * kMicrosecond + t / 2, kClockDiv, static_cast<std::uint16_t>(divider / 3));
+    check_until(20 * kMicrosecond);
+    b.write_at(20 * kMicrosecond + t / 3, kClockDiv, static_cast<std::uint16_t>(divider * 2));
+    check_until(40 * kMicrosecond);
+    // The counter steps out of c at the time given for c, not an edge earlier or later.
+    const std::int64_t count = tb.count();
+    const Time step = *tb.time_of_cycle_time(count + 1);
+    EXPECT_EQ(b.read_at(step - 1, kTcnt), count + 1) << mhz;
+    EXPECT_EQ(b.read_at(step, kTcnt), count + 2) << mhz;
+  }
+}
+
 // The function + context form (no std::function) keeps the same times, order and slots
 // as the callback form, and a slot it used serves a callback event afterwards.
 TEST(TimeBase, CycleTimeActionsRunLikeCallbacks) {

@@ -106,6 +106,9 @@ class DividerTicks {
   static DividerTicks started_at(Edge start, std::int64_t first_delay, std::int64_t period);
 
   std::int64_t period() const { return period_; }
+  // Ticks counted before the last period change (0 after a restart): edge_of() holds for
+  // the later ones.
+  std::int64_t ticks_before_change() const { return base_; }
   // Ticks at edges <= `edge`. Inline: asked at every cycle start and cycle-time event.
   std::int64_t count_through(Edge edge) const {
     if (edge < first_) return base_;

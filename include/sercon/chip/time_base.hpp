@@ -111,8 +111,15 @@ class TimeBase : public ChipUnit {
     std::int64_t cycle_time;
     sim::Time when;  // kept up to date while pending
   };
-  bool ahead(std::int64_t cycle_time) const {
-    return running_ && tick_of(cycle_time) > ticks_.count_through(now_edge());
+  // When the step out of `cycle_time` happens if it is ahead, else nullopt. A tick is ahead
+  // when it comes after the last period change (earlier ones have passed) and its edge is
+  // after now (after the last edge at or before now): one edge time, no tick count.
+  std::optional<sim::Time> step_ahead(std::int64_t cycle_time) const {
+    const std::int64_t tick = tick_of(cycle_time);
+    if (!running_ || tick <= ticks_.ticks_before_change()) return std::nullopt;
+    const sim::Time when = mclk_.time_of(ticks_.edge_of(tick));
+    if (when <= scheduler_.now()) return std::nullopt;
+    return when;
   }
   sim::Time time_of_step(std::int64_t cycle_time) const {
     return mclk_.time_of(ticks_.edge_of(tick_of(cycle_time)));
