@@ -76,18 +76,20 @@ void TimeBase::start_cycle(CycleKind kind) {
   const Edge start = mclk_.first_at_or_after(scheduler_.now());
   ticks_ = DividerTicks::started_at(start, mclkst_.get(regs_), tick_period());
   base_ = regs_.value(kTcntst);
-  begin(kind);
+  // The first tick is at least one edge after `start`, the first edge at or after now: the
+  // counter holds TCNTST.
+  begin(kind, base_);
 }
 
 void TimeBase::shift_cycle(std::int64_t by) {
   if (!running_) return;
   drop_future_events();
   base_ -= by;
-  begin(CycleKind::Substitute);
+  begin(CycleKind::Substitute, count());
 }
 
-void TimeBase::begin(CycleKind kind) {
-  const CycleStart start{kind, count(), tscyc()};
+void TimeBase::begin(CycleKind kind, std::int64_t count) {
+  const CycleStart start{kind, count, tscyc()};
   // Index loop: a listener may add listeners.
   for (std::size_t i = 0; i < cycle_listeners_.size(); ++i) {
     const CycleStartListener& l = cycle_listeners_[i];

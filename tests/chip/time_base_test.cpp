@@ -312,6 +312,34 @@ TEST(TimeBase, AStepIsAheadExactlyWhileTheCounterHasNotMadeIt) {
   }
 }
 
+// docs/timing.md, "Time base": a cycle start's listeners hear the counter as it reads then:
+// TCNTST after a load (the time base does not count ticks for it: the first one is at least
+// an edge away, whatever MCLKST), TCNTST - TSCYC moved on for a substitute cycle.
+TEST(TimeBase, CycleStartListenersHearTheCounterAsItReads) {
+  for (const std::int64_t mclkst : {0, 1, 7}) {
+    TimingBench b(config_mhz(32));
+    b.chip.reg_write(kClockDiv, static_cast<std::uint16_t>(mclkst << 8 | 31));
+    b.chip.reg_write(kTcntst, 9);
+    b.chip.reg_write(kTscyc0, 50);
+    struct Heard {
+      TimeBase* time_base;
+      std::vector<std::pair<CycleKind, std::int64_t>> starts;
+      static void hear(void* heard, const CycleStart& start) {
+        auto& h = *static_cast<Heard*>(heard);
+        EXPECT_EQ(start.count, h.time_base->count());
+        h.starts.emplace_back(start.kind, start.count);
+      }
+    } heard{&b.time_base(), {}};
+    b.time_base().on_cycle_start(&heard, &Heard::hear);
+    b.run_to(10 * kMicrosecond + 5);  // between MCLK edges
+    b.cycles().mst_detected(b.now());
+    b.run_to(100 * kMicrosecond);  // the window closes empty: a substitute cycle
+    ASSERT_GE(heard.starts.size(), 2u) << mclkst;
+    EXPECT_EQ(heard.starts[0], std::make_pair(CycleKind::Mst, std::int64_t{9})) << mclkst;
+    EXPECT_EQ(heard.starts[1].first, CycleKind::Substitute) << mclkst;
+  }
+}
+
 // The function + context form (no std::function) keeps the same times, order and slots
 // as the callback form, and a slot it used serves a callback event afterwards.
 TEST(TimeBase, CycleTimeActionsRunLikeCallbacks) {

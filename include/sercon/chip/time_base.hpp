@@ -131,7 +131,7 @@ class TimeBase : public ChipUnit {
   std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
   void drop_future_events();
   void cancel_all();
-  void begin(CycleKind kind);
+  void begin(CycleKind kind, std::int64_t count);  // `count`: the counter now
   void on_register_change(std::uint8_t address);
 
   sim::Scheduler& scheduler_;
