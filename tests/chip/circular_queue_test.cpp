@@ -76,5 +76,27 @@ TEST(serial_CircularQueue, PushingAnElementOfItselfWhenFull) {
   EXPECT_EQ(q.back(), long_text);
 }
 
+// The buffer's size is kept beside it (circular_queue.hpp): a queue moved from is empty and
+// grows a buffer of its own again; the one moved to keeps the elements in order.
+TEST(serial_CircularQueue, AMovedFromQueueIsEmptyAndUsable) {
+  CircularQueue<int> q;
+  for (int i = 0; i < 6; ++i) q.push_back(i);
+  q.pop_front();
+  CircularQueue<int> moved(std::move(q));
+  EXPECT_EQ(moved.size(), 5u);
+  EXPECT_EQ(moved.front(), 1);
+  EXPECT_EQ(moved.back(), 5);
+  EXPECT_TRUE(q.empty());  // NOLINT(bugprone-use-after-move): the state asserted here
+  for (int i = 0; i < 20; ++i) q.push_back(i);
+  EXPECT_EQ(q.size(), 20u);
+  EXPECT_EQ(q[19], 19);
+  CircularQueue<int> assigned;
+  assigned = std::move(moved);
+  EXPECT_EQ(assigned.back(), 5);
+  EXPECT_TRUE(moved.empty());  // NOLINT(bugprone-use-after-move)
+  moved.push_back(7);
+  EXPECT_EQ(moved.front(), 7);
+}
+
 }  // namespace
 }  // namespace sercon::sim

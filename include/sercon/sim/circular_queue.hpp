@@ -15,6 +15,21 @@ namespace sercon::sim {
 template <class T>
 class CircularQueue {
  public:
+  CircularQueue() = default;
+  CircularQueue(const CircularQueue&) = default;
+  CircularQueue& operator=(const CircularQueue&) = default;
+  // A moved-from queue is empty, with no buffer (its counts go with the buffer).
+  CircularQueue(CircularQueue&& other) noexcept { *this = std::move(other); }
+  CircularQueue& operator=(CircularQueue&& other) noexcept {
+    items_ = std::exchange(other.items_, {});
+    head_ = std::exchange(other.head_, 0);
+    size_ = std::exchange(other.size_, 0);
+    mask_ = std::exchange(other.mask_, 0);
+    capacity_ = std::exchange(other.capacity_, 0);
+    return *this;
+  }
+  ~CircularQueue() = default;
+
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
 
@@ -31,7 +46,7 @@ class CircularQueue {
   // element of this queue: when the buffer must grow, the value is built before it moves.
   template <class... Args>
   T& emplace_back(Args&&... args) {
-    if (size_ == items_.size()) [[unlikely]] {
+    if (size_ == capacity_) [[unlikely]] {
       T value(std::forward<Args>(args)...);
       grow();
       return next_slot() = std::move(value);
@@ -66,12 +81,14 @@ class CircularQueue {
     items_ = std::move(bigger);
     head_ = 0;
     mask_ = items_.size() - 1;
+    capacity_ = items_.size();
   }
 
   std::vector<T> items_;  // a power of two of slots, or none
   std::size_t head_ = 0;
   std::size_t size_ = 0;
   std::size_t mask_ = 0;
+  std::size_t capacity_ = 0;  // items_.size(), kept: a vector works it out by a division
 };
 
 }  // namespace sercon::sim
