@@ -46,7 +46,8 @@ void Scheduler::SortedRun::insert(const Entry& entry) {
     // room before the front. Further in, a binary search.
     if (tail - head <= kWalk || when < buffer[head + kWalk].when) {
       if (head == 0) {  // room for this entry and the next few late-comers
-        if (tail + kWalk > buffer.size()) make_room();
+        // With head 0, make_room() grows; more than once if kWalk outgrows a doubling.
+        while (tail + kWalk > buffer.size()) make_room();
         std::copy_backward(buffer.data(), buffer.data() + tail, buffer.data() + tail + kWalk);
         head += kWalk;
         tail += kWalk;
