@@ -406,8 +406,33 @@ void SerialReceiver::fire_report() {
   } else {
     st.start_done = true;
     on_start_(start, f.address);
+    if (plan_telegram_after_start(r)) return;
   }
   plan_reports();
+}
+
+// After a frame's start report, the earliest report a plan can find is that frame's
+// detection when the processor wants it: every report of an entry before comes before the
+// frame's start (frames do not overlap, and the pipeline keeps their order), every other
+// report of this entry or a later one (the lazy bursts too) after its end. So it is
+// planned without the walk, as plan_reports() would plan it; otherwise the walk decides.
+bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
+  if (!on_telegram_ || !unit_.running()) return false;
+  Entry* e = find(fired.serial);  // again: the handler may have pruned or added entries
+  if (e == nullptr || !e->decode || fired.frame >= e->frames.size()) return false;
+  FrameState& st = e->frames[fired.frame];
+  if (st.end_done) return false;
+  if (interest_ != nullptr &&
+      !interest_->wants_telegram(st.start, e->decode->frames[fired.frame])) {
+    return false;
+  }
+  sim::Scheduler& s = unit_.chip().scheduler();
+  const sim::Time t = with_reports(*e, fired.frame).telegram_report;
+  if (t < s.now() || t == kNever || report_event_.value != 0) return false;
+  report_ = Report{t, fired.serial, fired.frame, true};
+  report_event_ = s.at(
+      t, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+  return true;
 }
 
 // --- line monitor ---------------------------------------------------------------------------

@@ -177,6 +177,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
                  sim::Time before);
   void fire_report();
+  bool plan_telegram_after_start(const Report& fired);  // true: planned
   void plan_monitor();
   void fire_monitor();
   bool good(const RxdSegment& s) const;  // edges at the receiver's rate
