@@ -27,7 +27,7 @@ constexpr std::size_t kMaxTimeline = 4096;
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
     : unit_(unit), recactn_(unit.chip(), Pin::RECACTN, *this) {
-  timeline_.push_back(Entry{RxdSegment{}, 0, 0, nullptr, {}});
+  timeline_.emplace_back(RxdSegment{}, 0, 0);
   const FieldRef& recact = unit.fields().recact;
   unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
     const bool on = recact_at(unit_.chip().scheduler().now());

@@ -73,17 +73,49 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
  private:
   // A decoded frame's times: start and end worked out when it is decoded (or cut), the
   // report times when first asked for (most frames pass a chip that wants no report).
+  // Set whole (FrameState{}: all zero and false) when a frame is taken: no member
+  // initializers, so the states of an entry not yet taken cost nothing (FrameStates).
   struct FrameState {
-    sim::Time start = 0, end = 0;   // opening flag at RxD; closing flag's end (or the cut)
-    sim::Time start_report = 0;     // address in + pipeline; kNever: no whole address
-    sim::Time telegram_report = 0;  // detection
-    bool reports_known = false;     // start_report and telegram_report are worked out
-    bool start_done = false, end_done = false;
+    sim::Time start, end;       // opening flag at RxD; closing flag's end (or the cut)
+    sim::Time start_report;     // address in + pipeline; kNever: no whole address
+    sim::Time telegram_report;  // detection
+    bool reports_known;         // start_report and telegram_report are worked out
+    bool start_done, end_done;
   };
   // Frame states without an allocation for the usual burst of one or two frames: in inline_
   // up to kInline of them, else all in more_ (contiguous either way, for the plans' walk).
+  // Only the first size() are ever read or copied: a new entry (every hop a node reads)
+  // writes none of its inline states, where value-initialising them cleared the whole entry.
   class FrameStates {
    public:
+    FrameStates() noexcept {}  // user-provided: an entry's value-initialisation leaves inline_
+    FrameStates(const FrameStates& other) : more_(other.more_), size_(other.size_) {
+      if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+    }
+    FrameStates(FrameStates&& other) noexcept : more_(std::move(other.more_)), size_(other.size_) {
+      if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+      other.size_ = 0;
+    }
+    FrameStates& operator=(const FrameStates& other) {
+      if (this != &other) {
+        more_ = other.more_;
+        size_ = other.size_;
+        if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+      }
+      return *this;
+    }
+    FrameStates& operator=(FrameStates&& other) noexcept {
+      if (this != &other) {
+        more_ = std::move(other.more_);
+        size_ = other.size_;
+        if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+        other.more_.clear();
+        other.size_ = 0;
+      }
+      return *this;
+    }
+    ~FrameStates() = default;
+
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
     FrameState* data() { return size_ <= kInline ? inline_.data() : more_.data(); }
@@ -118,11 +150,13 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
    private:
     static constexpr std::size_t kInline = 2;
-    std::array<FrameState, kInline> inline_{};
+    std::array<FrameState, kInline> inline_;  // the first size_ set (when size_ <= kInline)
     std::vector<FrameState> more_;
     std::size_t size_ = 0;
   };
   struct Entry {
+    // User-provided: value-initialising the aggregate cleared all of it first.
+    Entry(RxdSegment s, sim::Time c, std::uint64_t n) : segment(std::move(s)), cut(c), serial(n) {}
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
