@@ -26,6 +26,7 @@ MclkGrid::MclkGrid(std::int64_t hz) : hz_(hz) {
     throw std::invalid_argument("MclkGrid: MCLK must be 1 Hz..1 THz, got " + std::to_string(hz) +
                                 " Hz");
   }
+  period_ = (sim::kSecond + hz - 1) / hz;
   const auto g = static_cast<std::uint64_t>(std::gcd(hz, sim::kSecond));
   num_ = static_cast<std::uint64_t>(hz) / g;
   den_ = static_cast<std::uint64_t>(sim::kSecond) / g;

@@ -31,7 +31,7 @@ class MclkGrid {
   std::int64_t hz() const { return hz_; }
   // The longest gap between two edges: 1e12 / f_MCLK rounded up. Edges are apart by it or
   // by one picosecond less.
-  sim::Time period() const { return (sim::kSecond + hz_ - 1) / hz_; }
+  sim::Time period() const { return period_; }
   sim::Time time_of(Edge edge) const;         // floor(edge * 1e12 / f_MCLK)
   Edge first_at_or_after(sim::Time t) const;  // 0 for t <= 0
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
@@ -43,6 +43,7 @@ class MclkGrid {
   Edge wide_last_at_or_before(sim::Time t) const;
 
   std::int64_t hz_;
+  sim::Time period_ = 0;   // worked out once: asked for every report time a receiver plans
   std::uint64_t num_ = 1;  // a: f_MCLK / gcd(f_MCLK, 1e12)
   std::uint64_t den_ = 1;  // b: 1e12 / gcd(f_MCLK, 1e12); the period when num_ == 1
   bool narrow_ = false;    // (a + 1) * b fits 64 bits: the split formulas apply
