@@ -156,11 +156,14 @@ std::int64_t ref_last_at_or_before(std::int64_t hz, Time t) {
 
 TEST(MclkGrid, FastPathMatchesThe128BitFormula) {
   // Exact periods (1e12 % f == 0), inexact ones in the chip's 12..64 MHz, odd ones whose
-  // reduced fraction is large (19 MHz + 1 and up take the 128-bit path), and the limits.
+  // reduced fraction is large (19 MHz + 1 and up take the 128-bit path), and the limits;
+  // 244.140625 MHz: a period of 4096 ps, a power of two, where the reciprocal the exact
+  // path divides by is furthest from 2^64 / period.
   const std::vector<std::int64_t> clocks{
-      16'000'000, 20'000'000, 25'000'000, 32'000'000, 40'000'000, 50'000'000,      64'000'000,
-      12'000'000, 24'000'000, 33'000'000, 12'345'678, 48'000'000, 63'999'999,      12'000'001,
-      18'000'001, 19'000'001, 64'000'001, 1,          7,          999'999'999'989, sim::kSecond};
+      16'000'000, 20'000'000,      25'000'000,   32'000'000, 40'000'000, 50'000'000,
+      64'000'000, 12'000'000,      24'000'000,   33'000'000, 12'345'678, 48'000'000,
+      63'999'999, 12'000'001,      18'000'001,   19'000'001, 64'000'001, 1,
+      7,          999'999'999'989, sim::kSecond, 244'140'625};
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   std::uint64_t seed = 0x9E37'79B9'7F4A'7C15u;
   const auto random_below = [&seed](std::int64_t bound) {  // splitmix64, reproducible

@@ -37,6 +37,20 @@ class MclkGrid {
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
 
  private:
+  // floor(u / den_) and its remainder by a multiply with the reciprocal and a correction:
+  // the edge is asked for at nearly every event, where a 64-bit division costs more time
+  // than the rest of the question. Exact for every u: the estimate is floor(u / den_) or
+  // one less (u * (1 + (2^64 - 1) % den_) < den_ * 2^64).
+  struct QuotRem {
+    std::uint64_t quot, rem;
+  };
+  QuotRem by_den(std::uint64_t u) const {
+    __extension__ using Wide = unsigned __int128;
+    std::uint64_t q = static_cast<std::uint64_t>((static_cast<Wide>(u) * inv_den_) >> 64);
+    std::uint64_t r = u - q * den_;
+    while (r >= den_) ++q, r -= den_;
+    return {q, r};
+  }
   // The 128-bit formulas, valid everywhere.
   sim::Time wide_time_of(Edge edge) const;
   Edge wide_first_at_or_after(sim::Time t) const;
@@ -46,7 +60,8 @@ class MclkGrid {
   sim::Time period_ = 0;   // worked out once: asked for every report time a receiver plans
   std::uint64_t num_ = 1;  // a: f_MCLK / gcd(f_MCLK, 1e12)
   std::uint64_t den_ = 1;  // b: 1e12 / gcd(f_MCLK, 1e12); the period when num_ == 1
-  bool narrow_ = false;    // (a + 1) * b fits 64 bits: the split formulas apply
+  std::uint64_t inv_den_ = UINT64_MAX;  // floor((2^64 - 1) / b), for by_den()
+  bool narrow_ = false;                 // (a + 1) * b fits 64 bits: the split formulas apply
   // Edges 0..exact_edges_ are at edge * b exactly: a == 1 and the product fits (else 0:
   // edge 0 at 0 holds for every grid).
   std::uint64_t exact_edges_ = 0;
@@ -75,7 +90,10 @@ inline sim::Time MclkGrid::time_of(Edge edge) const {
 inline Edge MclkGrid::first_at_or_after(sim::Time t) const {
   if (t <= 0) return 0;
   const auto u = static_cast<std::uint64_t>(t);
-  if (num_ == 1) return static_cast<Edge>(u / den_ + (u % den_ != 0));  // narrow_ too
+  if (num_ == 1) {  // narrow_ too
+    const QuotRem d = by_den(u);
+    return static_cast<Edge>(d.quot + (d.rem != 0));
+  }
   if (!narrow_) return wide_first_at_or_after(t);
   const std::uint64_t q = u / den_;
   const std::uint64_t r = u % den_;
@@ -87,7 +105,7 @@ inline Edge MclkGrid::first_at_or_after(sim::Time t) const {
 inline Edge MclkGrid::last_at_or_before(sim::Time t) const {
   if (t < 0) return -1;
   const auto u = static_cast<std::uint64_t>(t);
-  if (num_ == 1) return static_cast<Edge>(u / den_);  // narrow_ too
+  if (num_ == 1) return static_cast<Edge>(by_den(u).quot);  // narrow_ too
   if (!narrow_) return wide_last_at_or_before(t);
   // (t + 1) = q * b + r; t < 2^63, so t + 1 fits unsigned.
   const std::uint64_t q = (u + 1) / den_;
