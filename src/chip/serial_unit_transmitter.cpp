@@ -48,17 +48,12 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   // Idle fill between: `0 1111111` repeated, one level change at fill bits 0, 8, 16, ...
   const sim::Time fill_bits = (begin_at - free_at_) / period;
   if (((fill_bits + 7) / 8) % 2 != 0) level_ = !level_;
-  wire::EncodedFrame where;
-  std::uint16_t fcs = 0;
-  SharedBits bits = write_shared_bits([&](wire::LineBits& out) {
-    wire::LineEncoder encoder(level_, std::move(out));
-    where = encoder.telegram(address, data);
-    level_ = encoder.level();
-    fcs = encoder.fcs();
-    out = encoder.take();
-  });
+  wire::TelegramCoding coding;
+  SharedBits bits = write_shared_bits(
+      [&](wire::LineBits& out) { coding = wire::encode_telegram(out, level_, address, data); });
+  level_ = coding.level_after;
   // The receivers' decode, known from what was encoded (docs/serial-and-ring.md, "Receiver").
-  seed_decode(bits, where, address, data, fcs);
+  seed_decode(bits, coding.frame, address, data, coding.fcs);
   const LineBurst burst{begin_at, period, std::move(bits)};
   free_at_ = burst.end();
   while (!sent_.empty() && sent_.front().end() <= now) sent_.pop_front();

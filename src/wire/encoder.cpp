@@ -48,6 +48,18 @@ constexpr std::uint64_t kIdlePattern = 0x7F7F7F7F7F7F7F7Full;  // `0 1111111`, M
 
 std::uint64_t top_mask(unsigned n) { return n == 0 ? 0 : kOnes << (64 - n); }
 
+// NRZI (sercos-facts §1): a 0 is a level change. Prefix XOR from the MSB turns the changes
+// into "odd number of changes so far", i.e. the level relative to the level before.
+std::uint64_t changes_so_far(std::uint64_t changes) {
+  changes ^= changes >> 1;
+  changes ^= changes >> 2;
+  changes ^= changes >> 4;
+  changes ^= changes >> 8;
+  changes ^= changes >> 16;
+  changes ^= changes >> 32;
+  return changes;
+}
+
 // Decoded bits on their way to NRZI. The hot paths keep them in a local so they stay in
 // registers: the encoder's members would go to memory around every byte read (a uint8_t
 // may alias them), and handing them between functions through memory measured slower.
@@ -109,15 +121,7 @@ void LineEncoder::flush() {
 }
 
 void LineEncoder::put_levels(std::uint64_t decoded, unsigned count) {
-  // NRZI (sercos-facts §1): a 0 is a level change. Prefix XOR from the MSB turns the
-  // changes into "odd number of changes so far", i.e. the level relative to level_.
-  std::uint64_t x = ~decoded & top_mask(count);
-  x ^= x >> 1;
-  x ^= x >> 2;
-  x ^= x >> 4;
-  x ^= x >> 8;
-  x ^= x >> 16;
-  x ^= x >> 32;
+  const std::uint64_t x = changes_so_far(~decoded & top_mask(count));  // NRZI
   const std::uint64_t levels = (level_ ? ~x : x) & top_mask(count);
   bits_.append(levels, count);
   level_ = ((levels >> (64 - count)) & 1u) != 0;
@@ -155,26 +159,69 @@ void LineEncoder::stuffed_bytes(std::span<const std::uint8_t> bytes) {
   flush();
 }
 
-EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::uint8_t> data) {
-  const std::size_t start = size();
-  // The chip codes one telegram per encoder: one allocation for all of it (flags, pending
-  // bits, and at most 10 bits per stuffed byte) rather than growing it by doubling.
-  if (start == 0) bits_.reserve(pending_count_ + 16 + 10 * (data.size() + 3));
+namespace {
+
+// Flag, address, data, FCS (low byte first), flag as decoded bits into `d`, each full word
+// to `full`; returns the FCS.
+template <class Full>
+[[gnu::always_inline]] inline std::uint16_t code_telegram(Decoded& d, std::uint8_t address,
+                                                          std::span<const std::uint8_t> data,
+                                                          const Full& full) {
   Fcs16 fcs;
   fcs.update(address);
   fcs.update(data);
   const std::uint16_t v = fcs.value();
-  fcs_ = v;
   const std::uint8_t head[1] = {address};
   const std::uint8_t tail[2] = {static_cast<std::uint8_t>(v & 0xFFu),
                                 static_cast<std::uint8_t>(v >> 8)};  // low byte first
-  const auto full = [this](std::uint64_t w) { put_levels(w, 64); };
-  Decoded d{pending_, pending_count_, 0};
   put(d, 0x7E, 8, full);  // flag; the stuffing count starts after it
   stuff_into(d, head, full);
   stuff_into(d, data, full);
   stuff_into(d, tail, full);
   put(d, 0x7E, 8, full);
+  return v;
+}
+
+}  // namespace
+
+TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint8_t address,
+                               std::span<const std::uint8_t> data) {
+  out.clear();
+  // One allocation for all of it (flags and at most 10 bits per stuffed byte, and a word of
+  // room past them), every word stored at a byte boundary into it (append_reserved).
+  out.reserve(16 + 10 * (data.size() + 3) + 64);
+  bool level = initial_level_high;
+  const auto full = [&out, &level](std::uint64_t w) {
+    const std::uint64_t x = changes_so_far(~w);
+    const std::uint64_t levels = level ? ~x : x;
+    out.append_reserved(levels, 64);
+    level = (levels & 1u) != 0;
+  };
+  Decoded d;
+  const std::uint16_t fcs = code_telegram(d, address, data, full);
+  if (d.count != 0) {
+    const std::uint64_t mask = top_mask(d.count);
+    const std::uint64_t x = changes_so_far(~d.bits & mask);
+    const std::uint64_t levels = (level ? ~x : x) & mask;
+    out.append_reserved(levels, d.count);  // after whole words: at a byte boundary
+    level = ((levels >> (64 - d.count)) & 1u) != 0;
+  }
+  return {{0, out.size()}, level, fcs};
+}
+
+EncodedFrame LineEncoder::telegram(std::uint8_t address, std::span<const std::uint8_t> data) {
+  if (size() == 0 && pending_count_ == 0) {  // a chip's telegram: the word loop
+    const TelegramCoding c = encode_telegram(bits_, level_, address, data);
+    level_ = c.level_after;
+    fcs_ = c.fcs;
+    ones_run_ = 0;
+    idle_phase_ = 0;
+    return c.frame;
+  }
+  const std::size_t start = size();
+  const auto full = [this](std::uint64_t w) { put_levels(w, 64); };
+  Decoded d{pending_, pending_count_, 0};
+  fcs_ = code_telegram(d, address, data, full);
   if (d.count != 0) put_levels(d.bits, d.count);
   pending_ = 0;
   pending_count_ = 0;

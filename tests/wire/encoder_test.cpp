@@ -203,9 +203,9 @@ LineBits reference_telegram(std::uint8_t address, const std::vector<std::uint8_t
   return out;
 }
 
-// The encoder codes eight bytes without a run of five 1s as one word (encoder.cpp,
-// stuff_into): runs across byte and word boundaries and every carried-in run must come
-// out as the bit-by-bit rules give.
+// The encoder codes a byte with one table lookup and NRZI a word at a time (encoder.cpp):
+// runs across byte and word boundaries and every carried-in run must come out as the
+// bit-by-bit rules give.
 TEST(Encoder, TelegramsMatchTheBitByBitRules) {
   std::mt19937 rng(0xC0DE);
   const std::uint8_t near_runs[] = {0xFF, 0x1F, 0xF8, 0x0F, 0xF0, 0x00, 0x7E, 0x3F, 0xFC, 0xEF};
@@ -221,6 +221,42 @@ TEST(Encoder, TelegramsMatchTheBitByBitRules) {
     enc.telegram(address, data);
     ASSERT_EQ(levels_string(enc.bits()), levels_string(reference_telegram(address, data, level)))
         << "telegram " << n;
+  }
+}
+
+// The three ways a telegram is coded give the bit-by-bit rules' bits: encode_telegram (a
+// chip's send: a word filled from bit 0, stored at byte boundaries into a buffer used
+// before, encoder.cpp), a fresh encoder (the same code), and an encoder after fill (its
+// words built first bit highest and appended at any bit position).
+TEST(Encoder, EveryCodingPathMatchesTheBitByBitRules) {
+  std::mt19937 rng(0x5EED);
+  LineBits reused;
+  for (int n = 0; n < 3000; ++n) {
+    std::vector<std::uint8_t> data(rng() % 200);
+    for (std::uint8_t& b : data) {
+      b = static_cast<std::uint8_t>(rng() % 4 == 0 ? 0xFF : rng() & (rng() % 2 ? 0xFFu : 0x3Fu));
+    }
+    const auto address = static_cast<std::uint8_t>(rng());
+    const bool level = (n & 1) != 0;
+    const std::string expected = levels_string(reference_telegram(address, data, level));
+
+    const TelegramCoding c = encode_telegram(reused, level, address, data);
+    ASSERT_EQ(levels_string(reused), expected) << "encode_telegram, telegram " << n;
+    EXPECT_EQ(c.frame, (EncodedFrame{0, reused.size()}));
+    EXPECT_EQ(c.level_after, reused[reused.size() - 1]);
+    std::vector<std::uint8_t> with_address{address};
+    with_address.insert(with_address.end(), data.begin(), data.end());
+    EXPECT_EQ(c.fcs, fcs16(with_address));
+
+    LineEncoder after_fill(level);
+    after_fill.idle(1 + rng() % 70);
+    const bool before = after_fill.level();
+    const EncodedFrame f = after_fill.telegram(address, data);
+    LineBits frame;
+    for (std::size_t i = f.start_bit; i < f.end_bit; ++i) frame.push_back(after_fill.bits()[i]);
+    ASSERT_EQ(levels_string(frame), levels_string(reference_telegram(address, data, before)))
+        << "after fill, telegram " << n;
+    EXPECT_EQ(f.end_bit, after_fill.size());
   }
 }
 

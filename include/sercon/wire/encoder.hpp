@@ -22,6 +22,20 @@ struct EncodedFrame {
   friend bool operator==(const EncodedFrame&, const EncodedFrame&) = default;
 };
 
+// What encode_telegram() wrote: where the frame is, the line level after its last bit and
+// the FCS it appended.
+struct TelegramCoding {
+  EncodedFrame frame;
+  bool level_after = true;
+  std::uint16_t fcs = 0;
+};
+
+// One telegram into `out` from its first bit (its bits are dropped, its storage kept), the
+// line at `initial_level_high` before it: the same bits as LineEncoder(initial_level_high,
+// out).telegram(address, data), without an encoder (a chip codes each telegram this way).
+TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint8_t address,
+                               std::span<const std::uint8_t> data);
+
 class LineEncoder {
  public:
   // The line level before the first bit this encoder writes.

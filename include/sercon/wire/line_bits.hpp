@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -30,6 +31,14 @@ class LineBits {
   // Appends `count` copies of one level.
   void append_run(bool high, std::size_t count);
   void append(const LineBits& other);
+  // Appends the `count` (1..64) most significant bits of `msb_first` (the rest 0) into room
+  // reserve() made: precondition size() % 8 == 0 and a reserve() of size() + 64 bits or
+  // more since. The encoder's word loop: no checks.
+  void append_reserved(std::uint64_t msb_first, unsigned count) {
+    const std::uint64_t be = __builtin_bswap64(msb_first);
+    std::memcpy(buf_.data() + size_ / 8, &be, 8);  // the bytes past size() were all 0
+    size_ += count;
+  }
   void reserve(std::size_t bit_count);
   void clear();
 
