@@ -56,16 +56,16 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   seed_decode(bits, coding.frame, address, data, coding.fcs);
   const LineBurst burst{begin_at, period, std::move(bits)};
   free_at_ = burst.end();
-  while (!sent_.empty() && sent_.front().end() <= now) sent_.pop_front();
-  sent_.push_back(burst);
+  while (!sent_.empty() && sent_.front().end <= now) sent_.pop_front();
+  sent_.push_back({burst.start, free_at_});
   unit_.repeater().own(burst);
   idle_.replan();
   return free_at_;
 }
 
 bool SerialTransmitter::level_at(sim::Time t) const {
-  for (const LineBurst& b : sent_) {
-    if (b.start <= t && t < b.end()) return false;
+  for (const OnLine& b : sent_) {
+    if (b.start <= t && t < b.end) return false;
   }
   return true;
 }
@@ -73,8 +73,8 @@ bool SerialTransmitter::level_at(sim::Time t) const {
 // Back to back telegrams keep IDLE low across the seam.
 sim::Time SerialTransmitter::next_change_after(sim::Time t) const {
   const bool level = level_at(t);
-  for (const LineBurst& b : sent_) {
-    for (const sim::Time c : {b.start, b.end()}) {
+  for (const OnLine& b : sent_) {
+    for (const sim::Time c : {b.start, b.end}) {
       if (c > t && level_at(c) != level) return c;
     }
   }

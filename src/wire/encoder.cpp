@@ -186,7 +186,7 @@ template <class Full>
 
 TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint8_t address,
                                std::span<const std::uint8_t> data) {
-  out.clear();
+  if (!out.empty()) out.clear();  // a recycled buffer is empty already
   // One allocation for all of it (flags and at most 10 bits per stuffed byte, and a word of
   // room past them), every word stored at a byte boundary into it (append_reserved).
   out.reserve(16 + 10 * (data.size() + 3) + 64);

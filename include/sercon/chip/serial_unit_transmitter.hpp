@@ -33,9 +33,15 @@ class SerialTransmitter final : private LazyPin::Source {
   sim::Time next_change_after(sim::Time t) const override;
 
   SerialUnit& unit_;
-  sim::VectorQueue<LineBurst> sent_;  // own telegrams not yet over, in time order
-  sim::Time free_at_ = 0;             // end of the last telegram (or release)
-  bool level_ = true;                 // line level at free_at_ (light = true)
+  // When an own telegram is on the line: all IDLE needs (not its bits, which would be one
+  // more count on the bits object per telegram).
+  struct OnLine {
+    sim::Time start = 0;
+    sim::Time end = 0;
+  };
+  sim::VectorQueue<OnLine> sent_;  // own telegrams not yet over, in time order
+  sim::Time free_at_ = 0;          // end of the last telegram (or release)
+  bool level_ = true;              // line level at free_at_ (light = true)
   LazyPin idle_;
 };
 
