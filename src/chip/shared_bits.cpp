@@ -7,7 +7,9 @@
 namespace sercon::chip {
 namespace {
 
-constexpr std::size_t kMaxPooled = 128;  // more than a ring has telegrams under way
+// More than a ring has telegrams under way: 254 slaves let some 256 go together at the end
+// of a cycle, and each one not kept is freed and allocated again the next cycle.
+constexpr std::size_t kMaxPooled = 1024;
 // A buffer longer than this (not a telegram: a test's long stream) is not kept.
 constexpr std::size_t kMaxKeptBits = 64 * 1024;
 

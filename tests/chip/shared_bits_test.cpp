@@ -3,6 +3,7 @@
 // with its bit buffer and its whole decode's storage, and carries nothing else of its past.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -53,7 +54,7 @@ TEST(serial_SharedBits, AReleasedObjectIsTakenAgainWithItsStorage) {
   // Held, these take every object the thread's free list holds (an earlier test may have
   // filled it), so the one released below is not refused for a full list.
   std::vector<SharedBits> held;
-  for (int i = 0; i < 200; ++i) held.push_back(share_bits(wire::LineBits()));
+  for (int i = 0; i < 1100; ++i) held.push_back(share_bits(wire::LineBits()));
   const wire::LineBits* node = nullptr;
   const BurstDecode* decode = nullptr;
   {
@@ -65,6 +66,27 @@ TEST(serial_SharedBits, AReleasedObjectIsTakenAgainWithItsStorage) {
   EXPECT_EQ(second.get(), node);
   EXPECT_EQ(second.decodes().whole.get(), decode);  // the kept decode, filled again
   expect_seed_decodes(second);
+}
+
+// A ring of 254 slaves has some 256 telegrams a cycle, let go of together when its cycle is
+// over: the free list keeps them all (up to 1024), so the next cycle's telegrams are all
+// recycled objects, not new allocations (docs/serial-and-ring.md, "Bits objects are
+// recycled"). With 128 kept, half of them were freed and allocated again every cycle.
+TEST(serial_SharedBits, ARingsCycleOfTelegramsIsAllTakenAgain) {
+  if (!kRecycleBits) GTEST_SKIP() << "nothing is recycled under AddressSanitizer (shared_bits.hpp)";
+  std::vector<SharedBits> held;  // empty the free list first (as in the test above)
+  for (int i = 0; i < 1100; ++i) held.push_back(share_bits(wire::LineBits()));
+  std::vector<const wire::LineBits*> before;
+  {
+    std::vector<SharedBits> cycle;
+    for (int i = 0; i < 300; ++i) cycle.push_back(sent(static_cast<std::uint8_t>(i), {0x01, 0x02}));
+    for (const SharedBits& b : cycle) before.push_back(b.get());
+  }
+  std::vector<SharedBits> next;
+  for (int i = 0; i < 300; ++i) next.push_back(sent(static_cast<std::uint8_t>(i), {0x03, 0x04}));
+  for (const SharedBits& b : next) {
+    EXPECT_NE(std::find(before.begin(), before.end(), b.get()), before.end());
+  }
 }
 
 TEST(serial_SharedBits, ARecycledDecodeKeepsNothingOfItsPast) {
