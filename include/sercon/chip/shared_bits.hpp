@@ -62,19 +62,21 @@ class SharedBits {
     if (node_) ++node_->count;
   }
   SharedBits(SharedBits&& other) noexcept : node_(std::exchange(other.node_, nullptr)) {}
+  // The same bits again (a lazy hop's fibre sets the burst to what it holds already) count
+  // nothing.
   SharedBits& operator=(const SharedBits& other) noexcept {
-    SharedBits copy(other);
-    std::swap(node_, copy.node_);
+    Node* const n = other.node_;
+    if (n == node_) return *this;
+    if (n) ++n->count;
+    drop(std::exchange(node_, n));
     return *this;
   }
   SharedBits& operator=(SharedBits&& other) noexcept {
-    SharedBits moved(std::move(other));
-    std::swap(node_, moved.node_);
+    Node* const n = std::exchange(other.node_, nullptr);  // first: `other` may be *this
+    drop(std::exchange(node_, n));
     return *this;
   }
-  ~SharedBits() {
-    if (node_ && --node_->count == 0) release(node_);
-  }
+  ~SharedBits() { drop(node_); }
 
   const wire::LineBits* get() const { return node_ ? &node_->bits : nullptr; }
   const wire::LineBits& operator*() const { return node_->bits; }
@@ -97,6 +99,9 @@ class SharedBits {
   explicit SharedBits(Node* node) : node_(node) {}
   static Node* fresh_node();  // counted from one, bits empty, no decodes (shared_bits.cpp)
   static void release(Node* node) noexcept;
+  static void drop(Node* node) noexcept {
+    if (node && --node->count == 0) release(node);
+  }
   friend SharedBits share_bits(wire::LineBits bits);
   template <class Write>
   friend SharedBits write_shared_bits(Write&& write);
