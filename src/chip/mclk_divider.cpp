@@ -30,7 +30,7 @@ MclkGrid::MclkGrid(std::int64_t hz) : hz_(hz) {
   const auto g = static_cast<std::uint64_t>(std::gcd(hz, sim::kSecond));
   num_ = static_cast<std::uint64_t>(hz) / g;
   den_ = static_cast<std::uint64_t>(sim::kSecond) / g;
-  inv_den_ = UINT64_MAX / den_;
+  by_den_ = sim::Reciprocal(den_);
   std::uint64_t bound;
   narrow_ = !__builtin_mul_overflow(num_ + 1, den_, &bound);
   if (num_ == 1) exact_edges_ = static_cast<std::uint64_t>(INT64_MAX) / den_;

@@ -12,7 +12,9 @@
 namespace sercon::chip {
 
 SerialRepeater::SerialRepeater(SerialUnit& unit)
-    : unit_(unit), sclk_period_(sim::period_of_hz(unit.chip().config().sclk_hz)) {}
+    : unit_(unit),
+      sclk_period_(sim::period_of_hz(unit.chip().config().sclk_hz)),
+      by_sclk_(static_cast<std::uint64_t>(sclk_period_)) {}
 
 void SerialRepeater::reset() {
   unit_.receiver().absorb_lazy();

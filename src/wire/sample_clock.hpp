@@ -4,8 +4,9 @@
 // so nothing accumulates; only the final value is rounded (edge times to the nearest ps).
 #pragma once
 
-#include <bit>
 #include <cstdint>
+
+#include "sercon/sim/reciprocal.hpp"
 
 namespace sercon::wire::detail {
 
@@ -20,31 +21,8 @@ inline Wide gcd_wide(Wide a, Wide b) {
   return a;
 }
 
-// n -> floor(n / d) for a fixed d and any 64-bit n, by a multiplication with a precomputed
-// reciprocal instead of a division (Granlund and Montgomery, "Division by invariant
-// integers using multiplication", 1994, fig. 4.1): about 5 cycles instead of 40.
-class Reciprocal {
- public:
-  explicit Reciprocal(std::uint64_t d) : d_(d) {
-    if (d <= 1) return;
-    // l = ceil(log2 d) >= 1; magic = floor(2^64 (2^l - d) / d) + 1 < 2^64.
-    const int l = 64 - std::countl_zero(d - 1);
-    const Wide two_l_minus_d = (Wide{1} << l) - d;
-    magic_ = static_cast<std::uint64_t>((two_l_minus_d << 64) / d + 1);
-    shift_ = l - 1;
-  }
-
-  std::uint64_t divide(std::uint64_t n) const {
-    if (d_ <= 1) return n;
-    const auto t = static_cast<std::uint64_t>((Wide{magic_} * n) >> 64);
-    return (t + ((n - t) >> 1)) >> shift_;
-  }
-
- private:
-  std::uint64_t d_;
-  std::uint64_t magic_ = 0;
-  int shift_ = 0;
-};
+// Division by a precomputed reciprocal (sercon/sim/reciprocal.hpp).
+using sim::Reciprocal;
 
 // x -> floor((x * mul + add) / div) for every x < 2^64, exact. The caller makes sure that
 // x * mul + add fits in 128 bits and the result in 64. When the numbers fit in 64 bits

@@ -8,12 +8,13 @@
 // lies near edge t * a / b. Splitting k (or t) by a (or b) keeps every product below a * b,
 // so when (a + 1) * b fits 64 bits (every f up to 18.4 MHz, every even f up to 73 MHz) the
 // grid needs no 128-bit division; an exact period (a == 1: 16, 20, 25, 32, 40, 50, 64 MHz)
-// needs at most one 64-bit division. Other grids, and results outside 64 bits, take the
-// 128-bit formula; both give identical results (MclkGrid.FastPathMatchesThe128BitFormula).
+// needs no division (a multiply by its reciprocal). Other grids, and results outside 64 bits, take
+// the 128-bit formula; both give identical results (MclkGrid.FastPathMatchesThe128BitFormula).
 #pragma once
 
 #include <cstdint>
 
+#include "sercon/sim/reciprocal.hpp"
 #include "sercon/sim/time.hpp"
 
 namespace sercon::chip {
@@ -37,19 +38,15 @@ class MclkGrid {
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
 
  private:
-  // floor(u / den_) and its remainder by a multiply with the reciprocal and a correction:
+  // floor(u / den_) and its remainder by a multiply with the reciprocal (sim::Reciprocal):
   // the edge is asked for at nearly every event, where a 64-bit division costs more time
-  // than the rest of the question. Exact for every u: the estimate is floor(u / den_) or
-  // one less (u * (1 + (2^64 - 1) % den_) < den_ * 2^64).
+  // than the rest of the question.
   struct QuotRem {
     std::uint64_t quot, rem;
   };
   QuotRem by_den(std::uint64_t u) const {
-    __extension__ using Wide = unsigned __int128;
-    std::uint64_t q = static_cast<std::uint64_t>((static_cast<Wide>(u) * inv_den_) >> 64);
-    std::uint64_t r = u - q * den_;
-    while (r >= den_) ++q, r -= den_;
-    return {q, r};
+    const std::uint64_t q = by_den_.divide(u);
+    return {q, u - q * den_};
   }
   // The 128-bit formulas, valid everywhere.
   sim::Time wide_time_of(Edge edge) const;
@@ -57,11 +54,11 @@ class MclkGrid {
   Edge wide_last_at_or_before(sim::Time t) const;
 
   std::int64_t hz_;
-  sim::Time period_ = 0;   // worked out once: asked for every report time a receiver plans
-  std::uint64_t num_ = 1;  // a: f_MCLK / gcd(f_MCLK, 1e12)
-  std::uint64_t den_ = 1;  // b: 1e12 / gcd(f_MCLK, 1e12); the period when num_ == 1
-  std::uint64_t inv_den_ = UINT64_MAX;  // floor((2^64 - 1) / b), for by_den()
-  bool narrow_ = false;                 // (a + 1) * b fits 64 bits: the split formulas apply
+  sim::Time period_ = 0;       // worked out once: asked for every report time a receiver plans
+  std::uint64_t num_ = 1;      // a: f_MCLK / gcd(f_MCLK, 1e12)
+  std::uint64_t den_ = 1;      // b: 1e12 / gcd(f_MCLK, 1e12); the period when num_ == 1
+  sim::Reciprocal by_den_{1};  // divides by b
+  bool narrow_ = false;        // (a + 1) * b fits 64 bits: the split formulas apply
   // Edges 0..exact_edges_ are at edge * b exactly: a == 1 and the product fits (else 0:
   // edge 0 at 0 holds for every grid).
   std::uint64_t exact_edges_ = 0;

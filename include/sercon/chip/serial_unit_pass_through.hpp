@@ -14,7 +14,8 @@ namespace sercon::chip {
 inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
   const sim::Time sclk = sclk_period_;
   const sim::Time due = t + SerialUnit::kRepeaterDelayBits * unit_.bit_period();
-  return (due + sclk - 1) / sclk * sclk;
+  if (due <= 0) return (due + sclk - 1) / sclk * sclk;  // before time 0: not on a ring
+  return static_cast<sim::Time>(by_sclk_.divide(static_cast<std::uint64_t>(due + sclk - 1))) * sclk;
 }
 
 inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
