@@ -52,7 +52,7 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
 
 inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   if (!lazy_hops_ || chain_depth >= kMaxChain || !unit_.running()) return false;
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   if (b.bit_period != unit_.bit_period() || b.start <= now) return false;
   // Asked first of the dearer checks: it is the one that fails at a node that reads the
   // burst (the checks have no effects, so their order is free).
@@ -100,7 +100,7 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
 }
 
 void SerialReceiver::absorb_waiting() {
-  prune_lazy(unit_.chip().scheduler().now());  // a burst over by now would only be pruned
+  prune_lazy(scheduler_.now());  // a burst over by now would only be pruned
   // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.

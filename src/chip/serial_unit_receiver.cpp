@@ -26,17 +26,17 @@ constexpr std::size_t kMaxTimeline = 4096;
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
-    : unit_(unit), recactn_(unit.chip(), Pin::RECACTN, *this) {
+    : unit_(unit), scheduler_(unit.chip().scheduler()), recactn_(unit.chip(), Pin::RECACTN, *this) {
   timeline_.emplace_back(RxdSegment{}, 0, 0);
   const FieldRef& recact = unit.fields().recact;
   unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
-    const bool on = recact_at(unit_.chip().scheduler().now());
+    const bool on = recact_at(scheduler_.now());
     return static_cast<std::uint16_t>(on ? stored | mask : stored & ~mask);
   });
 }
 
 SerialReceiver::~SerialReceiver() {
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   s.cancel(report_event_);
   s.cancel(monitor_event_);
   for (const Deferred& d : deferred_) s.cancel(d.event);
@@ -76,7 +76,7 @@ SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
 }
 
 void SerialReceiver::announce(RxdSegment segment) {
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   const sim::Time at = segment.since;
   if (at < now) {
     throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
@@ -111,11 +111,9 @@ void SerialReceiver::pass_to_repeater(const Entry& e) {
   if (chain_depth >= kMaxChain) {
     // Go on when the change reaches RxD: the chain starts again from the scheduler.
     const std::uint64_t serial = e.serial;
-    std::erase_if(deferred_,
-                  [this](const Deferred& d) { return !unit_.chip().scheduler().pending(d.event); });
-    deferred_.push_back(
-        Deferred{serial, unit_.chip().scheduler().at(
-                             e.segment.since, [this, serial] { forward_deferred(serial); })});
+    std::erase_if(deferred_, [this](const Deferred& d) { return !scheduler_.pending(d.event); });
+    deferred_.push_back(Deferred{
+        serial, scheduler_.at(e.segment.since, [this, serial] { forward_deferred(serial); })});
     return;
   }
   const sim::ScopedCount link(chain_depth);
@@ -217,7 +215,7 @@ void SerialReceiver::work_out_reports(Entry& e, std::size_t i) const {
 
 // Entries over and done with: a later one is in force and no report of theirs is to come.
 void SerialReceiver::prune() {
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
     Entry& e = timeline_.front();
     if (e.serial == report_.serial && report_event_.value != 0) return;
@@ -248,13 +246,13 @@ SerialReceiver::Entry* SerialReceiver::find(std::uint64_t serial) {
 
 const RxdSegment& SerialReceiver::input() const {
   absorb_lazy_to_read();
-  return timeline_[in_force(unit_.chip().scheduler().now())].segment;
+  return timeline_[in_force(scheduler_.now())].segment;
 }
 
 std::vector<RxdSegment> SerialReceiver::input_from_now() const {
   absorb_lazy_to_read();
   std::vector<RxdSegment> out;
-  for (std::size_t i = in_force(unit_.chip().scheduler().now()); i < timeline_.size(); ++i) {
+  for (std::size_t i = in_force(scheduler_.now()); i < timeline_.size(); ++i) {
     out.push_back(timeline_[i].segment);
   }
   return out;
@@ -262,7 +260,7 @@ std::vector<RxdSegment> SerialReceiver::input_from_now() const {
 
 void SerialReceiver::reset() {
   absorb_lazy();
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   s.cancel(report_event_);
   s.cancel(monitor_event_);
   report_event_ = monitor_event_ = {};
@@ -280,7 +278,7 @@ void SerialReceiver::reset() {
 // announced for later is taken as if announced now.
 void SerialReceiver::release() {
   absorb_lazy();
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   const std::size_t current = in_force(now);
   monitor_seen_ = timeline_[current].serial;
   monitor_last_ = timeline_[current].segment;
@@ -294,7 +292,7 @@ void SerialReceiver::release() {
 void SerialReceiver::refresh_rate() {
   absorb_lazy();
   if (!unit_.running()) return;
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   for (std::size_t i = in_force(now) + 1; i < timeline_.size(); ++i) take(timeline_[i]);
   plan_reports();
   plan_monitor();
@@ -354,7 +352,7 @@ inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best) {
 }
 
 void SerialReceiver::plan_reports() {
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   const sim::Time now = s.now();
   if (!lazy_.empty() && lazy_report_due(now)) absorb_lazy();
   Report best{kNever, 0, 0, false};
@@ -380,7 +378,7 @@ void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
   const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
   if (planned <= e.segment.since) return;  // its reports all come after the planned one
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   const sim::Time now = s.now();
   Report best{planned, 0, 0, false};
   scan(e, now, best);
@@ -426,7 +424,7 @@ bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
       !interest_->wants_telegram(st.start, e->decode->frames[fired.frame])) {
     return false;
   }
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   const sim::Time t = with_reports(*e, fired.frame).telegram_report;
   if (t < s.now() || t == kNever || report_event_.value != 0) return false;
   report_ = Report{t, fired.serial, fired.frame, true};
@@ -445,7 +443,7 @@ bool SerialReceiver::good(const RxdSegment& s) const {
 // signals (edges at the receiver's rate) its status cannot change.
 void SerialReceiver::plan_monitor() {
   absorb_lazy();
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   s.cancel(monitor_event_);
   monitor_event_ = {};
   if (!unit_.running()) return;

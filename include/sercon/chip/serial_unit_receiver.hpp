@@ -222,6 +222,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::Time next_change_after(sim::Time t) const override;
 
   SerialUnit& unit_;
+  sim::Scheduler& scheduler_;  // the chip's, kept here: a hop asks for the time, one pointer less
   SerialUnit::TelegramStartHandler on_start_;
   SerialUnit::TelegramHandler on_telegram_;
   const ReceiveInterest* interest_ = nullptr;
