@@ -21,9 +21,6 @@ inline Wide gcd_wide(Wide a, Wide b) {
   return a;
 }
 
-// Division by a precomputed reciprocal (sercon/sim/reciprocal.hpp).
-using sim::Reciprocal;
-
 // x -> floor((x * mul + add) / div) for every x < 2^64, exact. The caller makes sure that
 // x * mul + add fits in 128 bits and the result in 64. When the numbers fit in 64 bits
 // (every realistic capture) it is one multiplication by a reciprocal, otherwise a 128-bit
@@ -41,7 +38,7 @@ class MulDiv {
     if (fast_) {
       mul64_ = static_cast<std::uint64_t>(mul_);
       add64_ = static_cast<std::uint64_t>(add_);
-      reciprocal_ = Reciprocal(static_cast<std::uint64_t>(div_));
+      reciprocal_ = sim::Reciprocal(static_cast<std::uint64_t>(div_));
     }
   }
 
@@ -61,7 +58,7 @@ class MulDiv {
   bool fast_ = false;
   std::uint64_t mul64_ = 0;
   std::uint64_t add64_ = 0;
-  Reciprocal reciprocal_{1};
+  sim::Reciprocal reciprocal_{1};
 };
 
 // Samples at num / den ps each (num, den > 0) from start_ps, seen by a DPLL with bit period
