@@ -36,10 +36,9 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
 }
 
 SerialReceiver::~SerialReceiver() {
-  sim::Scheduler& s = scheduler_;
-  s.cancel(report_event_);
-  s.cancel(monitor_event_);
-  for (const Deferred& d : deferred_) s.cancel(d.event);
+  scheduler_.cancel(report_event_);
+  scheduler_.cancel(monitor_event_);
+  for (const Deferred& d : deferred_) scheduler_.cancel(d.event);
 }
 
 void SerialReceiver::on_start(SerialUnit::TelegramStartHandler handler) {
@@ -260,11 +259,10 @@ std::vector<RxdSegment> SerialReceiver::input_from_now() const {
 
 void SerialReceiver::reset() {
   absorb_lazy();
-  sim::Scheduler& s = scheduler_;
-  s.cancel(report_event_);
-  s.cancel(monitor_event_);
+  scheduler_.cancel(report_event_);
+  scheduler_.cancel(monitor_event_);
   report_event_ = monitor_event_ = {};
-  for (const Deferred& d : deferred_) s.cancel(d.event);
+  for (const Deferred& d : deferred_) scheduler_.cancel(d.event);
   deferred_.clear();
   for (Entry& e : timeline_) {
     e.decode = nullptr;
@@ -352,8 +350,7 @@ inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best) {
 }
 
 void SerialReceiver::plan_reports() {
-  sim::Scheduler& s = scheduler_;
-  const sim::Time now = s.now();
+  const sim::Time now = scheduler_.now();
   if (!lazy_.empty() && lazy_report_due(now)) absorb_lazy();
   Report best{kNever, 0, 0, false};
   if (unit_.running() && (on_start_ || on_telegram_)) {
@@ -366,11 +363,11 @@ void SerialReceiver::plan_reports() {
                     best.serial == report_.serial && best.frame == report_.frame &&
                     best.telegram == report_.telegram;
   if (same) return;
-  s.cancel(report_event_);
+  scheduler_.cancel(report_event_);
   report_event_ = {};
   report_ = best;
   if (best.when == kNever) return;
-  report_event_ = s.at(
+  report_event_ = scheduler_.at(
       best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
 }
 
@@ -378,14 +375,13 @@ void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
   const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
   if (planned <= e.segment.since) return;  // its reports all come after the planned one
-  sim::Scheduler& s = scheduler_;
-  const sim::Time now = s.now();
+  const sim::Time now = scheduler_.now();
   Report best{planned, 0, 0, false};
   scan(e, now, best);
   if (best.serial == 0) return;  // the planned report stays the earliest
-  s.cancel(report_event_);
+  scheduler_.cancel(report_event_);
   report_ = best;
-  report_event_ = s.at(
+  report_event_ = scheduler_.at(
       best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
 }
 
@@ -424,11 +420,10 @@ bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
       !interest_->wants_telegram(st.start, e->decode->frames[fired.frame])) {
     return false;
   }
-  sim::Scheduler& s = scheduler_;
   const sim::Time t = with_reports(*e, fired.frame).telegram_report;
-  if (t < s.now() || t == kNever || report_event_.value != 0) return false;
+  if (t < scheduler_.now() || t == kNever || report_event_.value != 0) return false;
   report_ = Report{t, fired.serial, fired.frame, true};
-  report_event_ = s.at(
+  report_event_ = scheduler_.at(
       t, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
   return true;
 }
@@ -443,11 +438,10 @@ bool SerialReceiver::good(const RxdSegment& s) const {
 // signals (edges at the receiver's rate) its status cannot change.
 void SerialReceiver::plan_monitor() {
   absorb_lazy();
-  sim::Scheduler& s = scheduler_;
-  s.cancel(monitor_event_);
+  scheduler_.cancel(monitor_event_);
   monitor_event_ = {};
   if (!unit_.running()) return;
-  const sim::Time now = s.now();
+  const sim::Time now = scheduler_.now();
   // Compared with what the monitor last took, not with the entry before: a change at the
   // very instant of the one in force replaces it in the timeline.
   RxdSegment before = monitor_last_;
@@ -459,7 +453,7 @@ void SerialReceiver::plan_monitor() {
         before = e.segment;
         continue;
       }
-      monitor_event_ = s.at(
+      monitor_event_ = scheduler_.at(
           e.segment.since, [](void* self) { static_cast<SerialReceiver*>(self)->fire_monitor(); },
           this);
       return;
