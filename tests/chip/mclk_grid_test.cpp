@@ -1,5 +1,5 @@
 // MCLK frequencies whose period is not a whole number of picoseconds (12, 24 MHz): edge k
-// is at floor(k * 1e12 / f_MCLK) ps, so nothing drifts (docs/timing.md, "MCLK grid").
+// is at floor(k * 1e12 / f_MCLK) ps, so nothing drifts (docs/timing.md, "MCLK and the dividers").
 // Expectations are computed here from that rule alone.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
-// The µs time base and the cycle counter TCNT (docs/timing.md, "Time base"): MCLKDIV
-// makes the tick, TCNTST / MCLKST load the counter at MST detection, and with the driver
-// formulas of facts §5 the counter steps from c to c + 1 c µs after the end of the MST.
+// The µs time base and the cycle counter TCNT (docs/timing.md, "The cycle counter TCNT"):
+// MCLKDIV makes the tick, TCNTST / MCLKST load the counter at MST detection, and with the
+// driver formulas of facts §5 the counter steps from c to c + 1 c µs after the end of the
+// MST.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -266,7 +267,7 @@ TEST(TimeBase, CycleTimeEventsRunAtTheStep) {
   EXPECT_EQ(ran[1], loaded + (3 + 98 * 25) * t);
 }
 
-// docs/timing.md, "Time base": a cycle-time event exists exactly for the steps the counter
+// docs/timing.md, "Cycle-time events": a cycle-time event exists exactly for the steps the counter
 // has not made yet. The time base decides "ahead" from the step's edge time alone (not by
 // counting ticks): at every MCLK edge and just before it, around a restart, on a grid
 // whose period is not whole picoseconds (30 MHz) and after MCLKDIV changes, a step out of
@@ -312,7 +313,7 @@ TEST(TimeBase, AStepIsAheadExactlyWhileTheCounterHasNotMadeIt) {
   }
 }
 
-// docs/timing.md, "Time base": a cycle start's listeners hear the counter as it reads then:
+// docs/timing.md, "Cycle-time events": a cycle start's listeners hear the counter as it reads then:
 // TCNTST after a load (the time base does not count ticks for it: the first one is at least
 // an edge away, whatever MCLKST), TCNTST - TSCYC moved on for a substitute cycle.
 TEST(TimeBase, CycleStartListenersHearTheCounterAsItReads) {

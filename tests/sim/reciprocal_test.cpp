@@ -1,6 +1,6 @@
 // Division by a precomputed reciprocal (sercon/sim/reciprocal.hpp) equals division: the
 // MCLK grid, the repeater's SCLK grid and the sample times of a capture rest on it
-// (docs/timing.md "Time base", docs/serial-and-ring.md "Repeater", docs/wire.md).
+// (docs/timing.md "MCLK and the dividers", docs/serial-and-ring.md "Repeater", docs/wire.md).
 #include "sercon/sim/reciprocal.hpp"
 
 #include <gtest/gtest.h>

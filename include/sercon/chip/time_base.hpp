@@ -1,4 +1,5 @@
-// The chip's µs time base and cycle counter (docs/timing.md, "Time base").
+// The chip's µs time base and cycle counter (docs/timing.md, sections 1 "MCLK and the
+// dividers" and 2 "The cycle counter TCNT").
 //
 // MCLKDIV divides MCLK into the µs tick: T_tick = (MCLKDIV + 1) / f_MCLK. The cycle
 // counter (TCNT, 0x12) counts those ticks. At every cycle start it is loaded with TCNTST
