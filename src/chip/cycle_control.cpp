@@ -141,9 +141,13 @@ void CycleControl::slave_mst_action(void* control) {
 }
 
 void CycleControl::mst_detected(sim::Time when) {
-  if (when < scheduler_.now()) {
-    throw std::invalid_argument("CycleControl::mst_detected: time " + std::to_string(when) +
-                                " ps is before now (" + std::to_string(scheduler_.now()) + " ps)");
+  const MclkGrid& mclk = time_base_.mclk();
+  const sim::Time load = mclk.time_of(mclk.first_at_or_after(when) + kMstSyncEdges);
+  if (load < scheduler_.now()) {
+    throw std::invalid_argument("CycleControl::mst_detected: an MST recognised at " +
+                                std::to_string(when) + " ps would load the counter at " +
+                                std::to_string(load) + " ps, before now (" +
+                                std::to_string(scheduler_.now()) + " ps)");
   }
   if (!running_) return;
   after_edges(when, kMstSyncEdges, &CycleControl::slave_mst_action);

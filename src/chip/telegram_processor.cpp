@@ -147,7 +147,7 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   const bool current = receiving_ && receiving_->start == telegram.start;
   if (is_mst(frame)) {
     if (current) withdraw_mst();
-    if (frame.ok()) on_mst(frame, telegram.detected);
+    if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(serial_.bit_period()));
     return;
   }
   if (current) finish_receive(frame);
@@ -164,13 +164,16 @@ void TelegramProcessor::withdraw_mst() {
   list_.reclaim(r.item);
 }
 
-void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time detected) {
+// A slave's counter loads at the detection itself: CycleControl's synchroniser is the 3
+// MCLK edges the detection already waited (facts §5: t_start from the MST's end to the
+// load), so it is handed the recognition point 5.5 bit times after the end, now past.
+void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time recognised) {
   if (master()) {
     mst_.returned();
     return;
   }
   phasr_.put(regs_, frame.data[0]);
-  cycle_control_.mst_detected(detected);
+  cycle_control_.mst_detected(recognised);
 }
 
 void TelegramProcessor::finish_receive(const wire::DecodedFrame& frame) {

@@ -184,6 +184,24 @@ TEST(SlaveCycle, MstDetectedContract) {
   EXPECT_EQ(b.chip.reg_read(kIntStat) & kIntCycst, 0);
 }
 
+// docs/timing.md, "Slave": the telegram processor hears of an MST at the detection edge,
+// which is the load edge (3 MCLK edges after the first at or after end + 5.5 bit), and
+// passes the recognition point, by then past. Accepted while its load is not before now:
+// the counter loads at that edge, not 3 edges later.
+TEST(SlaveCycle, ARecognitionPastIsTakenWhileItsLoadIsNotPast) {
+  SlaveBench b;
+  const Time recognised = 100 * kMicrosecond + 1;
+  const Time load = edge_at_or_after(recognised, b.mclk()) + 3 * b.mclk();
+  b.run_to(load);
+  b.cycles().mst_detected(recognised);
+  EXPECT_EQ(b.read_at(load, kTcnt), kStartValue);
+  EXPECT_TRUE(b.flags_at(load, kIntCycst));
+  EXPECT_EQ(b.read_at(b.step_into(load, kStartValue + 1) - 1, kTcnt), kStartValue);
+  EXPECT_EQ(b.read_at(b.step_into(load, kStartValue + 1), kTcnt), kStartValue + 1);
+  ASSERT_GT(b.now(), load);
+  EXPECT_THROW(b.cycles().mst_detected(recognised), std::invalid_argument);  // load past
+}
+
 // The telegram processor may announce a detection ahead of time; several may be in the
 // synchroniser at once, and each loads the counter in turn (the second one is early).
 TEST(SlaveCycle, FutureDetectionTimeIsAccepted) {

@@ -241,13 +241,12 @@ inline Time detection(Time end, const Timing& t) {
 }
 inline Time repeated(Time in, const Timing& t) { return ceil_to(in + 2 * t.bit, 15'625); }
 
-// Time base (docs/timing.md): a slave loads its counter with TCNTST at the 3rd MCLK edge
-// after the MST's detection; the counter steps from c to c + 1 ("cycle time c") at
-// load + MCLKST + (c - TCNTST) ticks. A telegram whose time is c begins on the first bit
-// edge at or after that.
-inline Time counter_load_after_detection(Time detected, const Timing& t) {
-  return detected + 3 * t.mclk();
-}
+// Time base (docs/timing.md, "Deriving the driver formulas"; facts §5 t_start): a slave
+// loads its counter with TCNTST at the 3rd MCLK edge after the first at or after the MST's
+// end + 5.5 bit, which is the MST's detection above (one synchroniser, not two); the
+// counter steps from c to c + 1 ("cycle time c") at load + MCLKST + (c - TCNTST) ticks. A
+// telegram whose time is c begins on the first bit edge at or after that.
+inline Time counter_load_after_detection(Time detected, const Timing&) { return detected; }
 inline Time cycle_time(Time load, std::uint16_t c, const Timing& t) {
   return load + (t.mclkst + static_cast<Time>(c - t.tcntst) * t.tick_edges()) * t.mclk();
 }

@@ -146,6 +146,36 @@ TEST_F(Cp4Ring, EveryTelegramStartsWhereHeadersAndDelaysSay) {
   EXPECT_EQ(starts(ring.fibre_from(2)), slave2);
 }
 
+// Datasheet 4.2.1 ("TRT: time for the start of telegram in µs after end of MST") with the
+// driver's TCNTST / MCLKST of facts §5, whose t_start (5.5 bit + 3.5 MCLK) is the whole
+// delay from the MST's end to the counter load: at 16 Mbit/s and 32 MHz (the design case of
+// docs/timing.md, "Deriving the driver formulas") a slave's AT at T1 begins on the first
+// bit edge at or after the first MCLK edge at or after (end of the MST at its RxD) + T1 µs.
+// Taken from what the fibres carried, not from the expectations above: the counter must not
+// wait for a second synchroniser after the detection.
+TEST_F(Cp4Ring, ASlavesAtBeginsT1MicrosecondsAfterTheMstEndedAtIt) {
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  const std::array<std::uint8_t, 1> phase{4};
+  const Time mst_len = static_cast<Time>(line_bits(0xFF, phase)) * t.bit;
+  for (int k = 1; k <= 2; ++k) {
+    const auto& into = ring.fibre_from(static_cast<std::size_t>(k - 1)).seen;
+    const auto& out = ring.fibre_from(static_cast<std::size_t>(k)).seen;
+    ASSERT_FALSE(into.empty());
+    ASSERT_EQ(into.front().address, 0xFF);
+    const Time mst_end = into.front().start + kFibre + mst_len;  // at slave k's RxD
+    const Time at_t1 = mst_end + static_cast<Time>(kT1[k]) * sim::kMicrosecond;
+    const Time expected = ceil_to(ceil_to(at_t1, t.mclk()), t.bit);
+    bool found = false;
+    for (const Seen& s : out) {
+      if (s.address != k) continue;
+      EXPECT_EQ(s.start, expected) << "slave " << k;
+      found = true;
+      break;
+    }
+    EXPECT_TRUE(found) << "slave " << k << " sent no AT";
+  }
+}
+
 TEST_F(Cp4Ring, TelegramsCarryTheirAddressesAndData) {
   ring.run_for(kTscyc * sim::kMicrosecond);
   const auto& m = ring.fibre_from(0).seen;

@@ -1,8 +1,8 @@
 // Who starts SERCOS cycles (docs/timing.md, "Cycle start").
 //
 // Slave (REGMODE = 0): the telegram processor reports each MST it recognises through
-// mst_detected(); 3 to 4 MCLK periods later (synchroniser) the cycle counter is loaded
-// with TCNTST and INT_CYCST is raised. The JTSCYC window judges each MST; when a window
+// mst_detected(); 3 to 4 MCLK periods after the recognition (synchroniser) the counter is
+// loaded with TCNTST and INT_CYCST is raised. The JTSCYC window judges each MST; when a window
 // closes empty the chip free-wheels a substitute cycle.
 // Master (REGMODE = 1): cycles start from the internal timer every TSCYC µs (PRESYNC = 0)
 // or at each active CYC_CLK edge (PRESYNC = 1, edge by CYCPOL, judged by the window).
@@ -38,9 +38,11 @@ class CycleControl : public ChipUnit {
   void release() override;
 
   // Slave entry point for the telegram processor: the serial receiver has recognised an
-  // MST at `when` (>= now; std::invalid_argument otherwise). That is 5.5 bit times after
-  // the end of the MST, the delay the driver's TCNTST compensates (facts §5). Ignored in
-  // master mode when the load would happen, and while the chip is in reset.
+  // MST at `when`, 5.5 bit times after the end of the MST. The counter loads at the third
+  // MCLK edge after the first at or after it, the delay the driver's TCNTST compensates
+  // (facts §5 t_start). `when` may be past (the telegram processor hears of the MST at that
+  // load edge); a load before now is std::invalid_argument. Ignored in master mode when the
+  // load would happen, and while the chip is in reset.
   void mst_detected(sim::Time when);
   // Master: "send the MST now", TCYCSTART µs after each cycle start.
   void on_send_mst(std::function<void()> listener);

@@ -26,6 +26,11 @@ class SerialRepeater;
 class LineMonitor;
 class TxdOutputs;
 
+// A telegram is recognised 5.5 bit times after its end (or after its address byte, for the
+// start report); the MCLK synchroniser then adds 3 edges (facts §5 t_start = 5.5·t_bit +
+// 3.5/f_MCLK; docs/serial-and-ring.md, "Receiver"). Rounded up to whole picoseconds.
+constexpr sim::Time five_and_a_half_bits(sim::Time bit_period) { return (11 * bit_period + 1) / 2; }
+
 // A telegram the receiver has decoded (or cut off by an error).
 struct ReceivedTelegram {
   sim::Time start;     // first bit of the opening flag at RxD

@@ -17,9 +17,6 @@ constexpr sim::Time kNever = LazyPin::kNever;
 constexpr int kMaxChain = 600;
 inline thread_local int chain_depth = 0;  // receivers in the chain now
 
-// The receiver's pipeline starts 5.5 bit times after what it reports (facts §5 t_start).
-constexpr sim::Time five_and_a_half_bits(sim::Time period) { return (11 * period + 1) / 2; }
-
 }  // namespace sercon::chip::receiver_detail
 
 namespace sercon::chip {
@@ -27,11 +24,11 @@ namespace sercon::chip {
 // The report times (worked out for every frame a node reads, and asked at every lazy hop
 // and prune).
 inline sim::Time SerialReceiver::report_lag(sim::Time period) const {
-  return receiver_detail::five_and_a_half_bits(period) + 4 * unit_.chip().mclk_period();
+  return five_and_a_half_bits(period) + 4 * unit_.chip().mclk_period();
 }
 
 inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
-  const sim::Time half_bits = receiver_detail::five_and_a_half_bits(period);
+  const sim::Time half_bits = five_and_a_half_bits(period);
   // Three MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
   const MclkGrid& mclk = unit_.chip().mclk();
   return mclk.time_of(mclk.first_at_or_after(t + half_bits) + 3);

@@ -63,7 +63,7 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   void on_send_mst();
   void on_telegram_start(sim::Time start, std::uint8_t address);
   void on_telegram(const ReceivedTelegram& telegram);
-  void on_mst(const wire::DecodedFrame& frame, sim::Time detected);
+  void on_mst(const wire::DecodedFrame& frame, sim::Time recognised);
   void offer(sim::Time start, std::uint8_t address);
   void withdraw_mst();
   void finish_receive(const wire::DecodedFrame& frame);
