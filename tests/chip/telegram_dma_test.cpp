@@ -164,6 +164,7 @@ TEST_F(Dma, AcknowledgedWritesFeedTheTransmitTelegram) {
   // select signals". Datasheet 4.2.2: with DMA = 1 the container holds only control words.
   chip().reg_write(kDmaCtrl, kDmaTxEn);
   EXPECT_TRUE(high(Pin::DMAREQT));
+  chip().ram_write(0x000, 0x5A5A);       // marker: start() below rewrites word 0
   chip().drive(Pin::MCSN0, Level::Low);  // RAM word 0 selected: must stay untouched
   chip().drive(Pin::MCSN1, Level::Low);
   dma_write(0xAAAA);
@@ -171,6 +172,7 @@ TEST_F(Dma, AcknowledgedWritesFeedTheTransmitTelegram) {
   dma_write(0xCCCC);
   chip().drive(Pin::MCSN0, Level::High);
   chip().drive(Pin::MCSN1, Level::High);
+  EXPECT_EQ(chip().ram_read(0x000), 0x5A5A);  // the DMA writes went to the FIFO only
   EXPECT_EQ(txcnt(chip().reg_read(kDmaCtrl)), 3u);
   start(0x5105, 0x0805);  // transmit with DMA = 1
   ring.run_for(kTscyc * sim::kMicrosecond);

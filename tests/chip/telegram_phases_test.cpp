@@ -1,7 +1,7 @@
 // Phase-up CP0 -> CP4 in a master + slave ring (facts §2 "Phases": CP0 MSTs only, CP1/2 one
 // MDT per cycle to one drive which answers, CP3/4 the configured telegrams; facts §5: a
-// master switches phases by writing PHAS0; datasheet 4.2: COMPT0 for phases 0..2, COMPT1
-// for 3..4). The slave follows the phase of the MSTs it receives (PHASR).
+// master switches phases by writing PHAS0, and its layout puts the CP0..2 list at COMPT0 and
+// the CP3..4 list at COMPT1). The slave follows the phase of the MSTs it receives (PHASR).
 #include <gtest/gtest.h>
 
 #include <array>
