@@ -122,14 +122,18 @@ void CycleControl::on_register_change(std::uint8_t address) {
   if (cycle_time && mode_ == Mode::MasterTimer && timer_idle_) start_timer_now();
 }
 
-void CycleControl::after_edges(sim::Time from, Edge edges, sim::Scheduler::Action action) {
+sim::Time CycleControl::after_edges(sim::Time from, Edge edges) const {
+  const MclkGrid& mclk = time_base_.mclk();
+  return mclk.time_of(mclk.first_at_or_after(from) + edges);
+}
+
+void CycleControl::recognise_at(sim::Time at, sim::Scheduler::Action action) {
   // Ids of events that ran stay until a few have gathered (cancelling them is harmless):
   // one MST per cycle need not scan the list each time.
   if (recognitions_.size() >= kKeptRecognitions) {
     std::erase_if(recognitions_, [this](auto id) { return !scheduler_.pending(id); });
   }
-  const Edge edge = time_base_.mclk().first_at_or_after(from) + edges;
-  recognitions_.push_back(scheduler_.at(time_base_.mclk().time_of(edge), action, this));
+  recognitions_.push_back(scheduler_.at(at, action, this));
 }
 
 void CycleControl::cyc_clk_action(void* control) {
@@ -141,8 +145,7 @@ void CycleControl::slave_mst_action(void* control) {
 }
 
 void CycleControl::mst_detected(sim::Time when) {
-  const MclkGrid& mclk = time_base_.mclk();
-  const sim::Time load = mclk.time_of(mclk.first_at_or_after(when) + kMstSyncEdges);
+  const sim::Time load = after_edges(when, kMstSyncEdges);
   if (load < scheduler_.now()) {
     throw std::invalid_argument("CycleControl::mst_detected: an MST recognised at " +
                                 std::to_string(when) + " ps would load the counter at " +
@@ -150,7 +153,7 @@ void CycleControl::mst_detected(sim::Time when) {
                                 std::to_string(scheduler_.now()) + " ps)");
   }
   if (!running_) return;
-  after_edges(when, kMstSyncEdges, &CycleControl::slave_mst_action);
+  recognise_at(load, &CycleControl::slave_mst_action);
 }
 
 void CycleControl::slave_mst() {
@@ -167,7 +170,7 @@ void CycleControl::on_cyc_clk(sim::Level level) {
   cyc_clk_high_ = high;
   const bool active_edge = cycpol_.on(regs_) ? !high : high;
   if (!active_edge || !running_ || mode_ != Mode::MasterCycClk) return;
-  after_edges(scheduler_.now(), kCycClkSyncEdges, &CycleControl::cyc_clk_action);
+  recognise_at(after_edges(scheduler_.now(), kCycClkSyncEdges), &CycleControl::cyc_clk_action);
 }
 
 void CycleControl::cyc_clk_recognised() {
