@@ -57,7 +57,13 @@ inline constexpr std::uint16_t kInt1pol = 0x0004;    // 0x03 bit 2
 inline constexpr std::uint16_t kEntmt = 0x0100;      // 0x03 bit 8
 inline constexpr std::uint16_t kFlmdtadr = 0x1000;   // 0x25 bit 12
 
+// SERCTRL (0x02) line monitor status bits.
+inline constexpr std::uint16_t kRdist = 0x1000;  // bit 12
+inline constexpr std::uint16_t kFibbr = 0x2000;  // bit 13
+
 // INTSTAT (0x04) bits.
+inline constexpr std::uint16_t kIntRdist = 0x0001;     // bit 0
+inline constexpr std::uint16_t kIntFibbr = 0x0002;     // bit 1
 inline constexpr std::uint16_t kIntCycst = 0x0004;     // bit 2
 inline constexpr std::uint16_t kIntRend = 0x0008;      // bit 3
 inline constexpr std::uint16_t kIntTend = 0x0010;      // bit 4

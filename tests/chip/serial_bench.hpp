@@ -34,12 +34,12 @@ inline constexpr std::uint16_t kLemiss = 1u << 8;
 inline constexpr std::uint16_t kTmode0 = 1u << 9;
 inline constexpr std::uint16_t kTmode1 = 1u << 10;
 inline constexpr std::uint16_t kTmode2 = 1u << 11;
-inline constexpr std::uint16_t kRdist = 1u << 12;
-inline constexpr std::uint16_t kFibbr = 1u << 13;
+using register_words::kFibbr;
+using register_words::kRdist;
 inline constexpr std::uint16_t kRecact = 1u << 14;
 // 0x04
-inline constexpr std::uint16_t kIntRdist = 1u << 0;
-inline constexpr std::uint16_t kIntFibbr = 1u << 1;
+using register_words::kIntFibbr;
+using register_words::kIntRdist;
 
 // What a line carries, change by change, with the scheduler's time of each change. The
 // announcements (line.hpp) go through a SettledLine first, so each change is logged at the

@@ -234,19 +234,17 @@ inline std::size_t line_bits(std::uint8_t address, std::span<const std::uint8_t>
 inline Time ceil_to(Time t, Time grid) { return (t + grid - 1) / grid * grid; }
 
 // Serial unit: the receiver detects a telegram at the first MCLK edge at or after its end +
-// 5.5 bit + 3 MCLK (facts §5 t_start); the repeater passes a telegram on 2 bit times later,
-// rounded up to the 64 MHz SCLK grid (docs/serial-and-ring.md).
+// 5.5 bit + 3 MCLK (facts §5 t_start); a slave's counter loads at its detection of the MST
+// (one synchroniser, docs/timing.md "Deriving the driver formulas"). The repeater passes a
+// telegram on 2 bit times later, rounded up to the 64 MHz SCLK grid (docs/serial-and-ring.md).
 inline Time detection(Time end, const Timing& t) {
   return ceil_to(end + (11 * t.bit + 1) / 2 + 3 * t.mclk(), t.mclk());
 }
 inline Time repeated(Time in, const Timing& t) { return ceil_to(in + 2 * t.bit, 15'625); }
 
-// Time base (docs/timing.md, "Deriving the driver formulas"; facts §5 t_start): a slave
-// loads its counter with TCNTST at the 3rd MCLK edge after the first at or after the MST's
-// end + 5.5 bit, which is the MST's detection above (one synchroniser, not two); the
-// counter steps from c to c + 1 ("cycle time c") at load + MCLKST + (c - TCNTST) ticks. A
-// telegram whose time is c begins on the first bit edge at or after that.
-inline Time counter_load_after_detection(Time detected, const Timing&) { return detected; }
+// Time base (docs/timing.md): after a counter load the counter steps from c to c + 1
+// ("cycle time c") at load + MCLKST + (c - TCNTST) ticks. A telegram whose time is c begins
+// on the first bit edge at or after that.
 inline Time cycle_time(Time load, std::uint16_t c, const Timing& t) {
   return load + (t.mclkst + static_cast<Time>(c - t.tcntst) * t.tick_edges()) * t.mclk();
 }

@@ -55,8 +55,8 @@ class Cp12 : public ::testing::TestWithParam<Variant> {
     first = ceil_to(ring.scheduler.now(), t.mclk());
     const std::array<std::uint8_t, 1> phase{1};
     const Time mst_in = on_bit_grid(first, t) + kFibre;
-    load = counter_load_after_detection(
-        detection(mst_in + static_cast<Time>(line_bits(0xFF, phase)) * t.bit, t), t);
+    // The slave's counter loads at its detection of the MST.
+    load = detection(mst_in + static_cast<Time>(line_bits(0xFF, phase)) * t.bit, t);
     // T1: the slave time whose AT begins at the master while its counter reads 101, i.e.
     // 100 µs into the window (datasheet 4.2.1 TRT: "time for the start of telegram").
     for (std::uint16_t c = t.tcntst; c < 400; ++c) {

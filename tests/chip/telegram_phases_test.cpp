@@ -24,11 +24,10 @@ class PhaseUp : public ::testing::Test {
     ring.run_for(444'444);
     const Time first = ceil_to(ring.scheduler.now(), t.mclk());
     // Where the slave's AT at 120 µs lands on the master's counter (docs/telegram-
-    // processing.md §3): the slave's counter starts 3 MCLK after it detects the MST.
+    // processing.md §3): the slave's counter loads at its detection of the MST.
     const std::array<std::uint8_t, 1> phase{1};
     const Time mst_in = on_bit_grid(first, t) + kFibre;
-    const Time load = counter_load_after_detection(
-        detection(mst_in + static_cast<Time>(line_bits(0xFF, phase)) * t.bit, t), t);
+    const Time load = detection(mst_in + static_cast<Time>(line_bits(0xFF, phase)) * t.bit, t);
     const Time at_in = on_bit_grid(cycle_time(load, 120, t), t) + kFibre;
     const auto at_time = static_cast<std::uint16_t>(
         t.tcntst + (at_in - first - t.mclkst * t.mclk()) / (t.tick_edges() * t.mclk()));

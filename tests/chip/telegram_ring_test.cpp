@@ -48,7 +48,7 @@ Expected expect(Time cycle_start, const Timing& t) {
   e.mst = on_bit_grid(cycle_start, t);
   Time mst_in = e.mst + kFibre;
   for (int k = 1; k <= 2; ++k) {
-    e.load[k] = counter_load_after_detection(detection(mst_in + mst_len, t), t);
+    e.load[k] = detection(mst_in + mst_len, t);  // the counter loads at the MST's detection
     e.mst_rep[k] = repeated(mst_in, t);
     e.at[k] = on_bit_grid(cycle_time(e.load[k], kT1[k], t), t);
     mst_in = e.mst_rep[k] + kFibre;
