@@ -1,9 +1,9 @@
-// A master and two slaves in a ring exchanging CP4 traffic (datasheet §1 "Telegram
-// processing", 4.2; facts §2 cycle, MDT records by position, ATs at T1; facts §5 counter
-// rules; docs/telegram-processing.md). Every telegram's start on every fibre is computed
-// here from the headers, the fibre delays, the documented receiver/repeater delays and the
-// counter rules, and compared to the picosecond; the data written into one chip's DPRAM
-// must arrive in the others'.
+// A master and two slaves in a ring exchanging CP4 traffic, and the same ring in CP3 and in
+// CP0 (datasheet §1 "Telegram processing", 4.2; facts §2 cycle, phases, MDT records by
+// position, ATs at T1; facts §5 counter rules; docs/telegram-processing.md). Every
+// telegram's start on every fibre is computed here from the headers, the fibre delays, the
+// documented receiver/repeater delays and the counter rules, and compared to the
+// picosecond; the data written into one chip's DPRAM must arrive in the others'.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -41,9 +41,9 @@ struct Expected {
   Time mdt_in[3] = {};    // MDT at slave k's RxD
 };
 
-Expected expect(Time cycle_start, const Timing& t) {
+Expected expect(Time cycle_start, const Timing& t, std::uint8_t mst_phase) {
   Expected e;
-  const std::array<std::uint8_t, 1> phase{4};
+  const std::array<std::uint8_t, 1> phase{mst_phase};
   const Time mst_len = static_cast<Time>(line_bits(0xFF, phase)) * t.bit;
   e.mst = on_bit_grid(cycle_start, t);
   Time mst_in = e.mst + kFibre;
@@ -64,19 +64,35 @@ Expected expect(Time cycle_start, const Timing& t) {
   return e;
 }
 
-class Cp4Ring : public ::testing::Test {
+// The ring in one communication phase: the list below sits where the phase takes it
+// (datasheet 4.2: COMPT0 for phases 0..2, COMPT1 for 3..7), the other pointer names a list
+// of nothing but an end marker; the phase's cycle time register (docs/timing.md, "Cycle
+// time TSCYC": TSCYC0 in phases 0..2, TSCYC1 in 3..7) holds kTscyc, the other
+// `other_tscyc`. The master's ENTMT is on from CP1 (facts §5: a driver sets it right after
+// selecting CP1), the slaves' always.
+class RingInPhase : public ::testing::Test {
  protected:
-  Cp4Ring() : ring(3, kFibre) {}
+  RingInPhase(std::uint8_t phase, std::uint16_t other_tscyc)
+      : ring(3, kFibre), phase_(phase), other_tscyc_(other_tscyc) {}
 
   void SetUp() override {
     t = timing_16mbit();
     // Where the first cycle will start: the MCLK edge after the REGMODE write below.
     ring.run_for(3'333'333);
     first = ceil_to(ring.scheduler.now(), t.mclk());
-    e = expect(first, t);
+    e = expect(first, t, phase_);
     for (int k = 1; k <= 2; ++k) program_slave_list(k);
     program_master_list();
     start_master(ring.chip(0));
+  }
+
+  // The two list pointers (COMPT0, COMPT1) and the two cycle times (TSCYC0, TSCYC1).
+  void point_lists(Chip& c, std::uint16_t list, std::uint16_t only_end) {
+    const bool low = phase_ <= 2;
+    c.ram_write(0, low ? list : only_end);
+    c.ram_write(1, low ? only_end : list);
+    c.reg_write(kTscyc0, low ? kTscyc : other_tscyc_);
+    c.reg_write(kTscyc1, low ? other_tscyc_ : kTscyc);
   }
 
   // Slave k: its AT at T1, the MDT's record at POS 2(k-1), an end marker.
@@ -84,8 +100,7 @@ class Cp4Ring : public ::testing::Test {
     Chip& s = ring.chip(static_cast<std::size_t>(k));
     program_slave(s, t, kTscyc);
     const auto adr = static_cast<std::uint16_t>(k);
-    s.ram_write(0, 0x0030);  // COMPT0: nothing but the end marker
-    s.ram_write(1, kList);
+    point_lists(s, kList, 0x0030);  // the other list: nothing but the end marker
     transmit_header(s, kList, static_cast<std::uint16_t>(0x5000 | adr), kT1[k], 2, 0x0027);
     words(s, 0x0024,
           {0x8002, static_cast<std::uint16_t>(0xA100 | adr),
@@ -101,9 +116,8 @@ class Cp4Ring : public ::testing::Test {
   // marker.
   void program_master_list() {
     Chip& m = ring.chip(0);
-    program_master(m, t, kTscyc, 4);
-    m.ram_write(0, 0x0040);
-    m.ram_write(1, kList);
+    program_master(m, t, kTscyc, phase_);
+    point_lists(m, kList, 0x0040);
     for (int k = 1; k <= 2; ++k) {
       const auto at = static_cast<std::uint16_t>(kList + 9 * (k - 1));
       const std::uint16_t time = counter_at(e.at_back[k], first, t) - 1;
@@ -115,15 +129,47 @@ class Cp4Ring : public ::testing::Test {
     words(m, 0x0036, {0x0002, 0x1111, 0x2222, 0x8002, 0x3333, 0x4444});
     end_marker(m, 0x003E, kMasterEnd);
     end_marker(m, 0x0040, kMasterEnd);
-    enable_transmission(m);
+    if (phase_ >= 1) enable_transmission(m);
   }
 
   Time cycle(int n) const { return static_cast<Time>(n) * kTscyc * sim::kMicrosecond; }
+
+  // What fibres 0, 1 and 2 carry in the first `cycles` cycles, from the rules alone: the
+  // master's timer repeats its cycle every TSCYC µs exactly (docs/timing.md, "Master with
+  // the internal timer"), and each slave follows the MST, so cycle n is cycle 0 moved by
+  // n * TSCYC, to the picosecond. In CP0 the MSTs alone (facts §2: "CP0 MSTs only"): the
+  // master's ENTMT is off, and the slaves' ATs wait for an MDT that asks for them
+  // (docs/telegram-processing.md §6, FLMDTADR in phases 0..2).
+  std::array<std::vector<Time>, 3> expected_starts(int cycles) const {
+    std::array<std::vector<Time>, 3> f;
+    for (int n = 0; n < cycles; ++n) {
+      const Time c = cycle(n);
+      if (phase_ == 0) {
+        f[0].push_back(e.mst + c);
+        f[1].push_back(e.mst_rep[1] + c);
+        f[2].push_back(e.mst_rep[2] + c);
+        continue;
+      }
+      f[0].insert(f[0].end(), {e.mst + c, e.mdt + c});
+      f[1].insert(f[1].end(), {e.mst_rep[1] + c, e.at[1] + c, e.mdt_rep[1] + c});
+      f[2].insert(f[2].end(), {e.mst_rep[2] + c, e.at1_rep2 + c, e.at[2] + c, e.mdt_rep[2] + c});
+    }
+    return f;
+  }
 
   Ring ring;
   Timing t;
   Time first = 0;
   Expected e;
+
+ private:
+  std::uint8_t phase_;
+  std::uint16_t other_tscyc_;
+};
+
+class Cp4Ring : public RingInPhase {
+ protected:
+  Cp4Ring() : RingInPhase(4, kTscyc) {}
 };
 
 std::vector<Time> starts(const TestFibre& f) {
@@ -132,23 +178,84 @@ std::vector<Time> starts(const TestFibre& f) {
   return v;
 }
 
-// For thousands of cycles (issue 4's test clause): the master's timer repeats its cycle
-// every TSCYC µs exactly (docs/timing.md, "Master with the internal timer"), and each slave
-// follows the MST, so cycle n is cycle 0 moved by n * TSCYC, to the picosecond.
+// For thousands of cycles (issue 4's test clause; expected_starts says why cycle n is
+// cycle 0 moved by n * TSCYC).
 constexpr int kLongRun = 2000;
 
 TEST_F(Cp4Ring, EveryTelegramStartsWhereHeadersAndDelaysSay) {
   ring.run_for(kLongRun * kTscyc * sim::kMicrosecond);
-  std::vector<Time> master, slave1, slave2;
-  for (int n = 0; n < kLongRun; ++n) {
-    const Time c = cycle(n);
-    master.insert(master.end(), {e.mst + c, e.mdt + c});
-    slave1.insert(slave1.end(), {e.mst_rep[1] + c, e.at[1] + c, e.mdt_rep[1] + c});
-    slave2.insert(slave2.end(), {e.mst_rep[2] + c, e.at1_rep2 + c, e.at[2] + c, e.mdt_rep[2] + c});
+  const auto expected = expected_starts(kLongRun);
+  EXPECT_EQ(starts(ring.fibre_from(0)), expected[0]);
+  EXPECT_EQ(starts(ring.fibre_from(1)), expected[1]);
+  EXPECT_EQ(starts(ring.fibre_from(2)), expected[2]);
+}
+
+// CP3 (facts §2: "the configured timing and telegram layout become active"): the traffic
+// of CP4 — MST, each slave's AT at T1 after the MST's end at it, the MDT at T2 — from the
+// list COMPT1 names and with TSCYC1 as the cycle (datasheet 4.2 COMPT1 for phases 3..7;
+// docs/timing.md, "Cycle time TSCYC"). Here COMPT0 names an empty list and TSCYC0 is 300
+// µs, so a chip that took the CP0..2 settings would put other telegrams on the fibres.
+class Cp3Ring : public RingInPhase {
+ protected:
+  Cp3Ring() : RingInPhase(3, 300) {}
+};
+
+TEST_F(Cp3Ring, EveryTelegramStartsWhereHeadersAndDelaysSay) {
+  ring.run_for(kLongRun * kTscyc * sim::kMicrosecond);
+  const auto expected = expected_starts(kLongRun);
+  EXPECT_EQ(starts(ring.fibre_from(0)), expected[0]);
+  EXPECT_EQ(starts(ring.fibre_from(1)), expected[1]);
+  EXPECT_EQ(starts(ring.fibre_from(2)), expected[2]);
+  // Facts §2: the MST carries the phase (3) in its data byte; the ATs carry their drive's
+  // address, the MDT address 255.
+  std::vector<std::uint8_t> addresses;
+  for (const Seen& s : ring.fibre_from(2).seen) {
+    if (s.address == 0xFF && s.data.size() == 1) {
+      EXPECT_EQ(s.data[0], 3);
+    }
+    if (addresses.size() < 4) addresses.push_back(s.address);
   }
-  EXPECT_EQ(starts(ring.fibre_from(0)), master);
-  EXPECT_EQ(starts(ring.fibre_from(1)), slave1);
-  EXPECT_EQ(starts(ring.fibre_from(2)), slave2);
+  EXPECT_EQ(addresses, (std::vector<std::uint8_t>{0xFF, 1, 2, 0xFF}));
+  // Every MST came back to the master (NMSTERR, datasheet 4.2 RAM word 10) and came to
+  // each slave in its JTSCYC window, TSCYC1 after the one before (docs/timing.md §4).
+  EXPECT_EQ(ring.chip(0).ram_read(10), 0);
+  for (std::size_t k = 1; k <= 2; ++k) {
+    EXPECT_EQ(ring.chip(k).ram_read(10), 0) << k;
+    EXPECT_EQ(ring.chip(k).reg_read(kIntStat) & kWindowFlags, 0) << k;
+    EXPECT_EQ(ring.chip(k).reg_read(kPhase) >> 8, 3) << k;  // PHASR
+  }
+}
+
+// CP0 (facts §2: "CP0 MSTs only (ring check ...)"): the MST with phase 0 at every cycle
+// start of TSCYC0 (docs/timing.md, "Cycle time TSCYC"; TSCYC1 is 300 µs here), repeated
+// by each slave 2 bit times later (docs/serial-and-ring.md, "Repeater"); nothing else on
+// any fibre, although the slaves' COMPT0 lists hold an AT to send every cycle (FLMDTADR
+// gate in phases 0..2, docs/telegram-processing.md §6) and the master's an MDT (ENTMT off,
+// delta spec 2.6.2, as a driver leaves it until CP1, facts §5).
+class Cp0Ring : public RingInPhase {
+ protected:
+  Cp0Ring() : RingInPhase(0, 300) {}
+};
+
+TEST_F(Cp0Ring, OnlyMstsCircleEachWhereTheRulesPutIt) {
+  ring.run_for(kLongRun * kTscyc * sim::kMicrosecond);
+  const auto expected = expected_starts(kLongRun);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(starts(ring.fibre_from(i)), expected[i]) << "fibre " << i;
+    for (const Seen& s : ring.fibre_from(i).seen) {
+      ASSERT_EQ(s.address, 0xFF) << "fibre " << i << " at " << s.start;
+      ASSERT_EQ(s.data, std::vector<std::uint8_t>{0}) << "fibre " << i << " at " << s.start;
+      ASSERT_TRUE(s.ok);
+    }
+  }
+  // Facts §2: "A master treats the ring as closed once its own MSTs come back": every one
+  // did (NMSTERR, datasheet 4.2 RAM word 10); each slave had its MST in its window.
+  EXPECT_EQ(ring.chip(0).ram_read(10), 0);
+  for (std::size_t k = 1; k <= 2; ++k) {
+    EXPECT_EQ(ring.chip(k).ram_read(10), 0) << k;
+    EXPECT_EQ(ring.chip(k).reg_read(kIntStat) & kWindowFlags, 0) << k;
+    EXPECT_FALSE(ring.chip(k).reg_read(kSlvFlags) & kFlmdtadr) << k;
+  }
 }
 
 // Datasheet 4.2.1 ("TRT: time for the start of telegram in µs after end of MST") with the
