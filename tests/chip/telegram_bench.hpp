@@ -75,6 +75,21 @@ class TestFibre final : public LineListener {
     corrupt_bit_ = bit;
   }
   void cut() { target_ = nullptr; }
+  // A break as ring::Fibre::break_now has it (docs/serial-and-ring.md, "Fibre"): the far end
+  // sees Dark from `at` (>= now), which cuts a telegram crossing it there, and nothing after
+  // it until restore_far_end, which gives it the idle fill from `at` on.
+  void break_far_end(Time at) {
+    if (!target_) return;
+    target_->line_condition(at, LineCondition::Dark, 0);
+    broken_ = target_;
+    target_ = nullptr;
+  }
+  void restore_far_end(Time at, Time bit_period) {
+    if (!broken_) return;
+    target_ = broken_;
+    broken_ = nullptr;
+    target_->line_condition(at, LineCondition::Idle, bit_period);
+  }
   Time delay() const { return delay_; }
 
   std::vector<Seen> seen;
@@ -104,6 +119,7 @@ class TestFibre final : public LineListener {
 
   Time delay_;
   LineListener* target_;
+  LineListener* broken_ = nullptr;  // the far end while broken
   unsigned corrupt_countdown_ = 0;
   std::size_t corrupt_bit_ = 0;
   Log log_;

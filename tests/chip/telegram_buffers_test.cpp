@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <string>
 
 #include "sercon/chip/telegram_processor.hpp"
 #include "telegram_bench.hpp"
@@ -197,6 +198,107 @@ TEST_F(Loopback, ReceiveValIsClearedAtTheStartAndSetAtTheEnd) {
   EXPECT_EQ(chip().ram_read(kRx), 0x0C05);
   EXPECT_TRUE(chip().reg_read(kIntStat) & kIntRend);
 }
+
+// The receive header's VAL and the buffer it names, read now.
+struct Named {
+  bool val = false;
+  std::uint16_t words[2] = {};
+};
+
+// Datasheet 4.2.1 VAL: "for double buffering ... data in buffer 0 (VAL = 0) or buffer 1
+// (VAL = 1) is valid"; delta spec 2.10.1 / docs/telegram-processing.md §5: a double-buffered
+// telegram is written into the buffer VAL does not name (VAL unchanged at the start), and
+// VAL flips to it at the end. So at no moment while the next telegram arrives does VAL name
+// a half-written buffer: read at every quarter bit from the telegram's first bit at the
+// receiver to 2 µs after its detection, the named buffer holds the whole previous telegram
+// up to the detection, and the whole new one from it on.
+TEST_F(Loopback, DoubleBufferNamesAWholeTelegramWhileTheNextArrives) {
+  start(0x5005, 0x0A05);  // receive DBUF, VAL = 0
+  auto named = [this] {
+    const std::uint16_t h = chip().ram_read(kRx);
+    Named n;
+    n.val = (h & 0x0400) != 0;
+    const auto buffer = static_cast<std::uint16_t>(kRxData + (n.val ? 2 : 0));
+    n.words[0] = chip().ram_read(buffer);
+    n.words[1] = chip().ram_read(static_cast<std::uint16_t>(buffer + 1));
+    return n;
+  };
+  const std::array<std::array<std::uint16_t, 2>, 4> data{
+      {{0x1111, 0x2222}, {0xAAAA, 0xBBBB}, {0x5A5A, 0xA5A5}, {0x0F0F, 0xF0F0}}};
+  for (int n = 0; n < 4; ++n) {
+    const auto& sent = data[static_cast<std::size_t>(n)];
+    words(chip(), kTxData, {sent[0], sent[1]});
+    const Time in = tx_start(n) + kFibre;
+    const Time end = in + static_cast<Time>(line_bits(5, le(sent[0], sent[1]))) * t.bit;
+    const Time done = detection(end, t);
+    for (Time at = in; at < done + 2 * sim::kMicrosecond; at += t.bit / 4) {
+      ring.scheduler.run_until(at);
+      const Named now = named();
+      // Cycle n lands in buffer 1 when n is even (VAL 0 -> 1), in buffer 0 when odd.
+      const bool arrived = at >= done;
+      const bool val = arrived ? n % 2 == 0 : n % 2 == 1;
+      EXPECT_EQ(now.val, val) << "cycle " << n << " at " << at - in << " ps";
+      if (!arrived && n == 0) continue;  // nothing received yet: buffer 0 as set up (0)
+      const auto& expect = data[static_cast<std::size_t>(arrived ? n : n - 1)];
+      EXPECT_EQ(now.words[0], expect[0]) << "cycle " << n << " at " << at - in << " ps";
+      EXPECT_EQ(now.words[1], expect[1]) << "cycle " << n << " at " << at - in << " ps";
+    }
+    ring.scheduler.run_until(first + cycle(n + 1) - 5 * sim::kMicrosecond);
+    EXPECT_EQ(chip().ram_read(kRx) & 0x2000, 0) << n;  // no RERR
+  }
+}
+
+// The same for a telegram cut off by a fibre break after the header took it (its address is
+// in) — at its first data word, half-way, and in its closing flag: datasheet 4.2.1 RERR
+// ("errored or not received"), NERR + 1; docs/telegram-processing.md §5: VAL (double buffer)
+// "flips to the buffer just written when error-free, stays otherwise". Read at every quarter
+// bit from the cut to the end of the cycle, VAL still names the buffer with the whole
+// telegram before; once the fibre is back, the next telegram is taken again.
+class LoopbackCut : public Loopback, public ::testing::WithParamInterface<int> {};
+
+TEST_P(LoopbackCut, DoubleBufferKeepsNamingTheWholeTelegramBeforeACutOne) {
+  start(0x5005, 0x0E05);   // receive DBUF, VAL = 1
+  ring.run_for(cycle(1));  // cycle 0: 0x1111 0x2222 into buffer 0, VAL = 0
+  ASSERT_EQ(chip().ram_read(kRx), 0x0A05);
+  words(chip(), kTxData, {0xAAAA, 0xBBBB});
+  const Time in = tx_start(1) + kFibre;
+  const std::size_t bits = line_bits(5, le(0xAAAA, 0xBBBB));
+  const std::size_t cut_bit = GetParam() >= 0 ? static_cast<std::size_t>(GetParam())
+                                              : bits - static_cast<std::size_t>(-GetParam());
+  const Time cut = in + static_cast<Time>(cut_bit) * t.bit;
+  ring.scheduler.run_until(cut);
+  ring.fibres[0]->break_far_end(cut);
+  for (Time at = cut; at < first + cycle(2) - sim::kMicrosecond; at += t.bit / 4) {
+    ring.scheduler.run_until(at);
+    ASSERT_EQ(chip().ram_read(kRx) & 0x0400, 0) << "VAL, " << at - in << " ps after the start";
+    ASSERT_EQ(chip().ram_read(kRxData), 0x1111) << at - in << " ps after the start";
+    ASSERT_EQ(chip().ram_read(kRxData + 1), 0x2222) << at - in << " ps after the start";
+    if (at == cut + 2 * sim::kMicrosecond) ring.fibres[0]->restore_far_end(at, t.bit);
+  }
+  EXPECT_EQ(chip().ram_read(kRx), 0x0A05 | 0x2000);  // RERR, VAL still 0
+  EXPECT_EQ(chip().ram_read(kRx + 4), 1);            // NERR
+  EXPECT_TRUE(chip().reg_read(kIntStat) & kIntRerr);
+  // The buffer VAL does not name got the words that were released (docs §5: "the words that
+  // arrived are stored all the same"; the receiver holds the last two bytes back until the
+  // flag tells data from FCS): none when cut in the data, both when cut in the closing flag.
+  const bool data_released = GetParam() < 0;
+  EXPECT_EQ(chip().ram_read(kRxData + 2), data_released ? 0xAAAA : 0);
+  EXPECT_EQ(chip().ram_read(kRxData + 3), data_released ? 0xBBBB : 0);
+  words(chip(), kTxData, {0x5A5A, 0xA5A5});
+  ring.run_for(cycle(1));  // cycle 2 arrives whole: into buffer 1, VAL = 1, RERR cleared
+  EXPECT_EQ(chip().ram_read(kRx), 0x0E05);
+  EXPECT_EQ(chip().ram_read(kRxData + 2), 0x5A5A);
+  EXPECT_EQ(chip().ram_read(kRxData + 3), 0xA5A5);
+  EXPECT_EQ(chip().ram_read(kRx + 4), 1);
+}
+
+// Cut at line bit 24 (flag and address in, first data byte under way), half-way, and 3 bits
+// before the end (in the closing flag).
+INSTANTIATE_TEST_SUITE_P(CutAt, LoopbackCut, ::testing::Values(24, 36, -3),
+                         [](const ::testing::TestParamInfo<int>& p) {
+                           return p.param >= 0 ? "Bit" + std::to_string(p.param)
+                                               : "BitsBeforeEnd" + std::to_string(-p.param);
+                         });
 
 TEST_F(Loopback, CorruptedTelegramSetsRerrCountsNerrAndLeavesValClear) {
   // Datasheet 4.2.1 RERR: "errored or not received (RERR = 1)"; NERR: error counter.
