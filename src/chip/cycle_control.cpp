@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "sercon/chip/required_unit.hpp"
+#include "sercon/chip/serial_unit.hpp"
 
 namespace sercon::chip {
 namespace {
@@ -17,8 +18,9 @@ constexpr std::uint8_t kTcycstart = 0x14;
 
 // Synchroniser depths (docs/timing.md): an MST recognised at t loads the counter at the
 // 3rd MCLK edge after the first edge at or after t, 3..4 periods later, the 3.5 / f_MCLK
-// of the driver's t_start; an asynchronous CYC_CLK edge passes two flip-flops.
-constexpr Edge kMstSyncEdges = 3;
+// of the driver's t_start: the edge the receiver reports it at (kDetectionEdges, the same
+// synchroniser); an asynchronous CYC_CLK edge passes two flip-flops.
+constexpr Edge kMstSyncEdges = kDetectionEdges;
 constexpr Edge kCycClkSyncEdges = 2;
 constexpr std::size_t kKeptRecognitions = 8;
 

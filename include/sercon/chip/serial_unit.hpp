@@ -30,6 +30,10 @@ class TxdOutputs;
 // start report); the MCLK synchroniser then adds 3 edges (facts §5 t_start = 5.5·t_bit +
 // 3.5/f_MCLK; docs/serial-and-ring.md, "Receiver"). Rounded up to whole picoseconds.
 constexpr sim::Time five_and_a_half_bits(sim::Time bit_period) { return (11 * bit_period + 1) / 2; }
+// The synchroniser's edges: a report (and a slave's MST counter load, CycleControl) comes at
+// the kDetectionEdges-th MCLK edge after the first at or after that point. One constant for
+// both: a slave loads its counter at the very edge its receiver reports the MST.
+constexpr int kDetectionEdges = 3;
 
 // A telegram the receiver has decoded (or cut off by an error).
 struct ReceivedTelegram {
