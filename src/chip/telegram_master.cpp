@@ -24,10 +24,8 @@ void MasterMst::error() {
 }
 
 bool MasterMst::send() {
-  if (awaiting_) {  // the last one never came back
-    awaiting_ = false;
-    error();
-  }
+  if (out_ && !judged_) error();  // the last one never came back, and had no window
+  out_ = false;
   time_base_.cancel(window_end_);
   window_end_ = 0;
   const sim::Time now = time_base_.scheduler().now();
@@ -37,7 +35,8 @@ bool MasterMst::send() {
   }
   const std::array<std::uint8_t, 1> phase{static_cast<std::uint8_t>(phas0_.get(regs_))};
   serial_.send(now, 0xFF, phase);
-  awaiting_ = true;
+  out_ = true;
+  judged_ = false;
   if (jtrdel2_.get(regs_) != 0) {
     window_end_ = time_base_.at_cycle_time(
         jtrdel2_.get(regs_), [](void* mst) { static_cast<MasterMst*>(mst)->window_ends(); }, this);
@@ -47,18 +46,22 @@ bool MasterMst::send() {
 
 void MasterMst::window_ends() {
   window_end_ = 0;
-  if (!awaiting_) return;
-  awaiting_ = false;
+  if (!out_ || judged_) return;
+  judged_ = true;
   error();
 }
 
 void MasterMst::returned() {
-  if (!awaiting_) return;  // not ours to judge: already judged missing, or none sent
-  awaiting_ = false;
+  if (!out_) return;  // none of this cycle's is out: sent none, or it is back already
+  out_ = false;
   time_base_.cancel(window_end_);
   window_end_ = 0;
+  // Measured whenever it comes back, even after the window closed on it: a driver whose
+  // ring delay grew past JTRDEL2 reads the new delay here to move the window.
   const std::uint16_t at = time_base_.tcnt();
   tcycdel_.put(regs_, at);
+  if (judged_) return;  // counted missing when the window closed
+  judged_ = true;
   const std::uint16_t last = jtrdel2_.get(regs_);
   if (last != 0 && (at < jtrdel1_.get(regs_) || at > last)) error();
 }

@@ -80,6 +80,28 @@ TEST(TelegramMaster, TcycdelIsTheCounterWhenTheOwnMstComesBack) {
   EXPECT_GT(expected, t.tcntst);
 }
 
+TEST(TelegramMaster, TcycdelIsMeasuredEvenWhenTheReturnComesAfterTheWindow) {
+  // Documented decision (telegram-processing.md, "TCYCDEL"): the counter when the own MST
+  // comes back, whether inside JTRDEL1..JTRDEL2 or not; a late one counts once in NMSTERR
+  // (when the window closes), not again when it comes. A driver whose ring delay grew past
+  // JTRDEL2 reads the new delay here.
+  Ring ring(1, kFibre);
+  const Timing t = timing_16mbit();
+  program_master(ring.chip(0), t, kTscyc, 0);
+  const std::array<std::uint8_t, 1> phase0{0};
+  ring.chip(0).reg_write(kJtrdel1, 1);
+  const MasterClock clock = start(ring, t);
+  const Time back = clock.mst_start(0) + kFibre;
+  const Time detected = detection(back + static_cast<Time>(line_bits(0xFF, phase0)) * t.bit, t);
+  const std::uint16_t expected = counter_at(detected, clock.cycle_start(0), t);
+  ASSERT_GT(expected - 1, t.tcntst);  // the window closes after the MST went out
+  ring.chip(0).reg_write(kJtrdel2, expected - 1);
+  ring.run_for(350 * sim::kMicrosecond);  // 4 MSTs, each back one step after its window
+  EXPECT_EQ(ring.chip(0).reg_read(kTcycdel), expected);
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntRetmst);
+  EXPECT_EQ(ring.chip(0).ram_read(10), 4);
+}
+
 TEST(TelegramMaster, ReturnInsideJtrdelWindowIsNoError) {
   Ring ring(1, kFibre);
   const Timing t = timing_16mbit();

@@ -29,7 +29,7 @@ class MasterMst {
   // An error-free MST has been detected at the receiver.
   void returned();
   // Reset: nothing awaited. Does not touch the time base (it may be gone).
-  void stop() { awaiting_ = false; }
+  void stop() { out_ = false; }
 
  private:
   void error();
@@ -41,7 +41,10 @@ class MasterMst {
   SerialUnit& serial_;
   TelegramRam& ram_;
   FieldRef phas0_, tcycdel_, jtrdel1_, jtrdel2_;
-  bool awaiting_ = false;
+  // An MST of this cycle went out and has not come back; judged: its error (missing, or
+  // outside the window) is counted, so a late return only measures TCYCDEL.
+  bool out_ = false;
+  bool judged_ = false;
   TimeBase::CycleEvent window_end_ = 0;
 };
 
