@@ -35,15 +35,16 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
       container_.resize(c.len);
       words = container_;
     }
+    // With double buffering VAL names the buffer that goes out (datasheet 4.2.1).
+    const std::uint32_t buffer = data + (storage.dbuf && val ? c.len : 0u);
     if (storage.dma) {
       dma_.transmit(words);
     } else {
-      const std::uint32_t buffer = data + (storage.dbuf && val ? c.len : 0u);
       ram_.read_run(buffer, words);
     }
     if (c.svfl) {
       const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
-                                    static_cast<std::uint16_t>(storage.dma ? 0 : data)};
+                                    static_cast<std::uint16_t>(storage.dma ? 0 : buffer)};
       port.before_transmit(use, words);
     }
     if (!fits) {

@@ -45,13 +45,21 @@ class ServicePort : public ::testing::Test {
 
   // Master loop: a telegram to 5 with two containers, the first one SVFL (container 3,
   // master coding); a receive header for it with the same split.
-  void start() {
+  // double_buffer: the transmit telegram double-buffered with VAL = 1 (buffer 1 goes out;
+  // buffer 0 holds other words).
+  void start(bool double_buffer = false) {
     t = timing_16mbit();
     Chip& m = ring.chip(0);
     program_master(m, t, kTscyc, 4);
     words(m, 0x000, {0x060, 0x040});
-    transmit_header(m, 0x040, 0x5005, 20, 3, 0x050);
-    words(m, 0x044, {0x4400 | 3 << 11 | 2, 0x0001, 0x0000, 0x8001, 0xCAFE});
+    if (double_buffer) {
+      transmit_header(m, 0x040, 0x5005 | telegram::kDbuf | telegram::kVal, 20, 3, 0x050);
+      words(m, 0x044,
+            {0x4400 | 3 << 11 | 2, 0xAAAA, 0xAAAB, 0x0001, 0x0000, 0x8001, 0xDEAD, 0xCAFE});
+    } else {
+      transmit_header(m, 0x040, 0x5005, 20, 3, 0x050);
+      words(m, 0x044, {0x4400 | 3 << 11 | 2, 0x0001, 0x0000, 0x8001, 0xCAFE});
+    }
     receive_header(m, 0x050, 0x0805, 0, 3, 0x060);
     words(m, 0x055, {0x4400 | 3 << 11 | 2, 0, 0, 0, 0x8001, 2, 0});
     end_marker(m, 0x060, 90);
@@ -103,6 +111,21 @@ TEST_F(ServicePort, SvflContainersPassThroughThePortBothWays) {
   // The words are in the DPRAM containers as well.
   EXPECT_EQ(chip().ram_read(0x057), 0x0F03);
   EXPECT_EQ(chip().ram_read(0x05B), 0xCAFE);
+}
+
+// Datasheet 4.2.1 VAL: with double buffering VAL = 1 names buffer 1, which goes out; the
+// engine is told that buffer's address (ServiceContainerUse::data_address, "the buffer"),
+// as the receive side tells the buffer it wrote.
+TEST_F(ServicePort, ADoubleBufferedContainerNamesTheBufferThatGoesOut) {
+  RecordingPort port;
+  tp().set_service_channel_port(&port);
+  start(true);
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  ASSERT_EQ(port.transmits.size(), 1u);
+  EXPECT_EQ(port.transmits[0].use.control_word, 0x044);
+  EXPECT_EQ(port.transmits[0].use.data_address, 0x047);  // data 0x045 + LEN 2: buffer 1
+  EXPECT_EQ(port.transmits[0].words, (std::vector<std::uint16_t>{0x0001, 0x0000}));
+  EXPECT_EQ(list_telegram().data, (std::vector<std::uint8_t>{0x03, 0x0F, 0x00, 0x00, 0xFE, 0xCA}));
 }
 
 TEST_F(ServicePort, RscendComesWhenTheEngineIsDone) {
