@@ -133,7 +133,10 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
   if (match != TelegramList::Match::Accepted) return;
   if (address_flag_phase() && item.has(telegram::kAchk)) flmdtadr_.set(regs_, true);
   try {
-    if (receiving_) receive_.missed(receiving_->item);  // never detected: lost
+    // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
+    // Frames do not overlap and a detection comes before the next frame's start report,
+    // so this is a guard, not a path the ring takes.
+    if (receiving_) receive_missed(receiving_->item);
     receiving_ = Receiving{item, start, false};
     receiving_->val_cleared = receive_.begin(item);
   } catch (const ListFault& f) {
