@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "register_words.hpp"
@@ -136,7 +138,16 @@ struct Timing {
   std::uint16_t tcntst = 1;
   std::uint16_t mclkst = 18;
 
-  Time mclk() const { return sim::period_of_hz(mclk_hz); }
+  // The picosecond helpers below work on whole-picosecond grids (ceil_to); an MCLK such as
+  // 24 MHz (41 666.67 ps) would need the chip's MclkGrid, so it is refused rather than
+  // rounded into expectations that drift from the chip's exact edges.
+  Time mclk() const {
+    if (mclk_hz <= 0 || sim::kSecond % mclk_hz != 0) {
+      throw std::logic_error("telegram_testing::Timing: MCLK " + std::to_string(mclk_hz) +
+                             " Hz has no whole-picosecond period");
+    }
+    return sim::kSecond / mclk_hz;
+  }
   std::int64_t tick_edges() const { return mclkdiv + 1; }
 };
 
