@@ -276,5 +276,12 @@ inline Time cycle_time(Time load, std::uint16_t c, const Timing& t) {
   return load + (t.mclkst + static_cast<Time>(c - t.tcntst) * t.tick_edges()) * t.mclk();
 }
 inline Time on_bit_grid(Time at, const Timing& t) { return ceil_to(at, t.bit); }
+// The counter at `at` in a cycle whose counter was loaded at `load` (the inverse of
+// cycle_time): TCNTST, plus one per tick; tick k at load + MCLKST + (k - 1) ticks.
+inline std::uint16_t counter_at(Time at, Time load, const Timing& t) {
+  const Time first_tick = load + t.mclkst * t.mclk();
+  if (at < first_tick) return t.tcntst;
+  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
+}
 
 }  // namespace sercon::chip::telegram_testing

@@ -17,12 +17,6 @@ constexpr Time kFibre = 1'000'000;
 constexpr std::uint16_t kTscyc = 2000;  // facts §2: a real master used 2 ms in CP1 and CP2
 constexpr std::uint16_t kMdtHeader = 0x014;
 
-std::uint16_t counter_at(Time at, Time load, const Timing& t) {
-  const Time first_tick = load + t.mclkst * t.mclk();
-  if (at < first_tick) return t.tcntst;
-  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
-}
-
 // The real driver's CP1/2 list (facts §5): receive header at 0x00B = 0x1000 (TCHK), time
 // 100 µs, length 2, next 0x014, errors 0, container 0xC002, POS 0, status word 0x012,
 // service info 0x013; transmit header at 0x014 = 0x5000 + drive address, time 600 µs,

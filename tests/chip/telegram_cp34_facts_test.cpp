@@ -53,12 +53,6 @@ constexpr std::uint16_t kSlaveMdtData = kSlaveMdt + 7;
 constexpr std::uint16_t kSlaveEnd = 0x11B;
 constexpr std::uint16_t kSlaveOnlyEnd = 0x120;
 
-std::uint16_t counter_at(Time at, Time load, const Timing& t) {
-  const Time first_tick = load + t.mclkst * t.mclk();
-  if (at < first_tick) return t.tcntst;
-  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
-}
-
 std::uint16_t block(std::size_t k) {
   return static_cast<std::uint16_t>(kCompt1List + kBlockWords * (k - 1));
 }

@@ -56,14 +56,6 @@ TEST(TelegramMaster, SendsOneMstPerCycleWithPhas0EvenWithEntmtOff) {
   EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntCycst);
 }
 
-// The counter value at time `at` in a cycle whose counter was loaded at `load`: TCNTST,
-// plus one per tick; tick k at load + MCLKST + (k - 1) * (MCLKDIV + 1) MCLK periods.
-std::uint16_t counter_at(Time at, Time load, const Timing& t) {
-  const Time first_tick = load + t.mclkst * t.mclk();
-  if (at < first_tick) return t.tcntst;
-  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
-}
-
 TEST(TelegramMaster, TcycdelIsTheCounterWhenTheOwnMstComesBack) {
   // Facts §5: TCYCDEL is "a measured delay" the driver reads; documented decision: the
   // counter of the master's cycle at the returned MST's detection.

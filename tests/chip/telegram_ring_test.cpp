@@ -23,12 +23,6 @@ constexpr std::uint16_t kMasterEnd = 150;
 constexpr std::uint16_t kSlaveEnd = 120;
 constexpr std::uint16_t kList = 0x020;
 
-std::uint16_t counter_at(Time at, Time load, const Timing& t) {
-  const Time first_tick = load + t.mclkst * t.mclk();
-  if (at < first_tick) return t.tcntst;
-  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
-}
-
 // Everything one cycle puts on the fibres, from the rules alone.
 struct Expected {
   Time mst = 0, mdt = 0;  // at the master's TxD

@@ -28,12 +28,6 @@ const std::vector<double> kLengths{10.0, 20.0, 35.0, 5.0, 40.0};  // fibre i lea
 
 std::uint16_t t1_of(std::size_t k) { return static_cast<std::uint16_t>(20 + 12 * (k - 1)); }
 
-std::uint16_t counter_at(Time at, Time load, const Timing& t) {
-  const Time first_tick = load + t.mclkst * t.mclk();
-  if (at < first_tick) return t.tcntst;
-  return static_cast<std::uint16_t>(t.tcntst + (at - first_tick) / (t.tick_edges() * t.mclk()) + 1);
-}
-
 // Logs the start of every telegram on a node's TxD2 when it starts: the announcements
 // (line.hpp) go through a SettledLine, so a telegram taken back before it starts (an own
 // telegram cutting a repeated one) never appears.
