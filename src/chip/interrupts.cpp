@@ -50,6 +50,12 @@ void Interrupts::reset(ResetCause) { refresh(); }
 
 void Interrupts::raise(Irq source) { field(source).set(regs_, true); }
 
+void Interrupts::set_level(Irq source, bool high) {
+  const FieldRef& f = field(source);
+  if (high) f.set(regs_, true);
+  regs_.hold(f.address, f.mask, high);
+}
+
 void Interrupts::raise_service_container(unsigned container) {
   if (container < 8) regs_.set_bits(kIntSc, static_cast<std::uint16_t>(1u << container), true);
 }

@@ -24,7 +24,7 @@ void RegisterFile::bus_write(std::uint8_t address, std::uint16_t value, std::uin
   value = static_cast<std::uint16_t>(value & enabled);
   const auto writable = static_cast<std::uint16_t>(m.writable & ~locked_[address] & enabled);
   std::uint16_t next = static_cast<std::uint16_t>((before & ~writable) | (value & writable));
-  next = static_cast<std::uint16_t>(next & ~(value & m.clearable));
+  next = static_cast<std::uint16_t>(next & ~(value & m.clearable & ~held_[address]));
   values_[address] = next;
   if (next != before) changed(address);
   for (const WriteHook& hook : write_hooks_[address]) hook(value, before);
@@ -33,6 +33,11 @@ void RegisterFile::bus_write(std::uint8_t address, std::uint16_t value, std::uin
 void RegisterFile::lock(std::uint8_t address, std::uint16_t mask, bool locked) {
   auto& l = locked_.at(address);
   l = static_cast<std::uint16_t>(locked ? (l | mask) : (l & ~mask));
+}
+
+void RegisterFile::hold(std::uint8_t address, std::uint16_t mask, bool held) {
+  auto& h = held_.at(address);
+  h = static_cast<std::uint16_t>(held ? (h | mask) : (h & ~mask));
 }
 
 void RegisterFile::on_write(std::uint8_t address, WriteHook hook) {
@@ -56,6 +61,7 @@ void RegisterFile::reset() {
     const std::uint16_t before = values_[a];
     values_[a] = masks_[a].reset;
     locked_[a] = 0;
+    held_[a] = 0;
     if (values_[a] != before) changed(a);
   }
 }

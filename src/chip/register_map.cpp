@@ -71,8 +71,10 @@ constexpr BitField kTelegramControl[] = {
 };
 
 constexpr BitField kInterruptA[] = {
-    {"INT_RDIST", 0, 1, W1C, 0, Both, Facts, "Receive signal became distorted"},
-    {"INT_FIBBR", 1, 1, W1C, 0, Both, Facts, "Receive signal lost (fibre broken)"},
+    {"INT_RDIST", 0, 1, W1C, 0, Both, Facts,
+     "Receive signal became distorted (project decision: not cleared while RDIST is 1)"},
+    {"INT_FIBBR", 1, 1, W1C, 0, Both, Facts,
+     "Receive signal lost (fibre broken) (project decision: not cleared while FIBBR is 1)"},
     {"INT_CYCST", 2, 1, W1C, 0, Both, Project,
      "Cycle start: MST sent (master) or accepted (slave)"},
     {"INT_REND", 3, 1, W1C, 0, Both, DeltaSpec,

@@ -89,9 +89,7 @@ void LineMonitor::set_rdist(bool on) {
   if (on == rdist_) return;
   rdist_ = on;
   unit_.fields().rdist.set(unit_.chip().regs(), on);
-  if (on) {
-    if (auto* irq = unit_.chip().unit<Interrupts>()) irq->raise(Irq::Rdist);
-  }
+  if (auto* irq = unit_.chip().unit<Interrupts>()) irq->set_level(Irq::Rdist, on);
   refresh_line_error();
 }
 
@@ -99,9 +97,7 @@ void LineMonitor::set_fibbr(bool on) {
   if (on == fibbr_) return;
   fibbr_ = on;
   unit_.fields().fibbr.set(unit_.chip().regs(), on);
-  if (on) {
-    if (auto* irq = unit_.chip().unit<Interrupts>()) irq->raise(Irq::Fibbr);
-  }
+  if (auto* irq = unit_.chip().unit<Interrupts>()) irq->set_level(Irq::Fibbr, on);
   refresh_line_error();
 }
 

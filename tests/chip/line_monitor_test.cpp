@@ -97,6 +97,44 @@ TEST(serial_LineMonitor, ANewFibbrtimAppliesToTheRunningDarkness) {
   EXPECT_TRUE(bit(b, kSerCtrl, kFibbr));
 }
 
+// Decision (docs/serial-and-ring.md, "Line monitor"), from facts §5 0x04: "A driver clears
+// with 0xFFFF, waits 20 cycles and calls the ring closed when (reg & 0x0382) == 0" — so a
+// fibre still broken must leave INT_FIBBR set after the clear. INT_FIBBR is latched from the
+// FIBBR level: a write of 1 does not clear it while FIBBR is 1, and does once it is 0.
+TEST(serial_LineMonitor, IntFibbrCannotBeClearedWhileTheFibreIsBroken) {
+  SerialBench b;
+  const Time t = b.period();
+  b.run_to(300 * t);
+  ASSERT_TRUE(bit(b, kSerCtrl, kFibbr));
+  b.chip->reg_write(kIntStat, 0xFFFF);
+  EXPECT_TRUE(bit(b, kIntStat, kIntFibbr));
+  b.run_to(400 * t);
+  b.chip->reg_write(kIntStat, kIntFibbr);
+  EXPECT_TRUE(bit(b, kIntStat, kIntFibbr));
+  // Light again: FIBBR clears, the latch stays until the host clears it, and now it can.
+  b.unit.rxd().line_condition(b.scheduler.now(), LineCondition::Idle, t);
+  EXPECT_FALSE(bit(b, kSerCtrl, kFibbr));
+  EXPECT_TRUE(bit(b, kIntStat, kIntFibbr));
+  b.chip->reg_write(kIntStat, kIntFibbr);
+  EXPECT_FALSE(bit(b, kIntStat, kIntFibbr));
+}
+
+// The same decision for INT_RDIST and the RDIST level (the line monitor's other status).
+TEST(serial_LineMonitor, IntRdistCannotBeClearedWhileTheSignalIsDistorted) {
+  SerialBench b;
+  const Time slow = bit_period_of(8);
+  b.run_to(100'000);
+  b.unit.rxd().line_condition(100'000, LineCondition::Idle, slow);
+  b.run_to(100'000 + 20 * 8 * slow);
+  ASSERT_TRUE(bit(b, kSerCtrl, kRdist));
+  b.chip->reg_write(kIntStat, kIntRdist);
+  EXPECT_TRUE(bit(b, kIntStat, kIntRdist));
+  b.unit.rxd().line_condition(b.scheduler.now(), LineCondition::Idle, b.period());
+  ASSERT_FALSE(bit(b, kSerCtrl, kRdist));
+  b.chip->reg_write(kIntStat, kIntRdist);
+  EXPECT_FALSE(bit(b, kIntStat, kIntRdist));
+}
+
 // Decision (serial_unit_monitor.hpp): RDISTLIM distorted edges in a row make RDIST; idle
 // fill sent at 8 Mbit/s to a 16 Mbit/s receiver has an edge every 8 of its bit times, all
 // distorted: with RDISTLIM = 10 (reset value) RDIST rises at the 10th edge.

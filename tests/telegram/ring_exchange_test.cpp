@@ -267,6 +267,33 @@ TEST_F(RingExchange, ABrokenFibreCutsTheRingThere) {
   EXPECT_EQ(ring.slave(4).ram_read(10), 2);
 }
 
+// Facts §5, register 0x04 [seen]: "A driver clears with 0xFFFF, waits 20 cycles and calls
+// the ring closed when (reg & 0x0382) == 0" (INT_FIBBR | the JTSCYC window flags). With the
+// fibre into the master broken before the clear, the master's RxD stays dark (no slave's
+// telegram lights it again, as with a break further up), so the check must fail: INT_FIBBR
+// is latched from the FIBBR level and a clear does not stick while it holds
+// (docs/serial-and-ring.md, "Line monitor"). Once the fibre is whole again the same check
+// passes.
+TEST_F(RingExchange, TheDriversRingClosedCheckFailsWhileAFibreIsBroken) {
+  constexpr std::uint16_t kRingOpen = 0x0382;
+  const Time cycle = kTscyc * sim::kMicrosecond;
+  Chip& m = ring.master();
+  scheduler.run_until(first + cycle);
+  ring.fibre(kSlaves).break_now();
+  scheduler.run_until(scheduler.now() + 2 * cycle);
+  ASSERT_TRUE(m.reg_read(kSerCtrl) & kFibbr);
+  m.reg_write(kIntStat, 0xFFFF);
+  scheduler.run_until(scheduler.now() + 20 * cycle);
+  EXPECT_NE(m.reg_read(kIntStat) & kRingOpen, 0);
+  EXPECT_TRUE(m.reg_read(kIntStat) & kIntFibbr);
+  ring.fibre(kSlaves).restore();
+  scheduler.run_until(scheduler.now() + 2 * cycle);
+  ASSERT_FALSE(m.reg_read(kSerCtrl) & kFibbr);
+  m.reg_write(kIntStat, 0xFFFF);
+  scheduler.run_until(scheduler.now() + 20 * cycle);
+  EXPECT_EQ(m.reg_read(kIntStat) & kRingOpen, 0);
+}
+
 // Seeded random line-bit errors on the last fibre (into the master). Which telegrams the
 // fibre hit, and where, is read off the line itself: what left slave 4 (its TxD2 tap)
 // against what reached the master's RxD (a relay behind the fibre); the levels that differ

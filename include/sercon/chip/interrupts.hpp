@@ -50,6 +50,10 @@ class Interrupts : public ChipUnit {
   // Latches `source`. A source the variant lacks (INT_WDOG, INT_RSCEND on the 410B) is
   // ignored.
   void raise(Irq source);
+  // A source that is a level (INT_RDIST: RDIST, INT_FIBBR: FIBBR): high latches the flag and
+  // keeps a write of 1 from clearing it while the level stays high; low lets it be cleared
+  // (docs/serial-and-ring.md, "Line monitor").
+  void set_level(Irq source, bool high);
   // Latches INTSC bit `container` (0..7); larger numbers are ignored.
   void raise_service_container(unsigned container);
 

@@ -54,6 +54,9 @@ class RegisterFile {
   // RW bits under `mask` ignore bus writes while locked (delta spec 2.6.2: ENTMT and PHAS0
   // while INT_WDOG is set).
   void lock(std::uint8_t address, std::uint16_t mask, bool locked);
+  // W1C bits under `mask` ignore a bus write of 1 while held: a latched interrupt whose
+  // source is a level that is still high (INT_FIBBR while FIBBR, Interrupts::set_level).
+  void hold(std::uint8_t address, std::uint16_t mask, bool held);
 
   void on_write(std::uint8_t address, WriteHook hook);
   void on_read(std::uint8_t address, ReadHook hook);
@@ -73,6 +76,7 @@ class RegisterFile {
   std::array<RegisterMasks, kRegisterCount> masks_{};
   std::array<std::uint16_t, kRegisterCount> values_{};
   std::array<std::uint16_t, kRegisterCount> locked_{};
+  std::array<std::uint16_t, kRegisterCount> held_{};
   std::array<std::vector<WriteHook>, kRegisterCount> write_hooks_;
   std::array<ReadHook, kRegisterCount> read_hooks_;
   std::vector<std::function<void(std::uint8_t)>> change_listeners_;

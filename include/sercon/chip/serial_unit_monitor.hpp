@@ -5,7 +5,8 @@
 // - RDIST: max(RDISTLIM, 1) distorted edges in a row. An edge is distorted when it comes
 //   from a signal at a bit period other than the receiver's (a telegram, idle fill or zero
 //   bits sent at another rate); an edge at the receiver's own rate clears the count and RDIST.
-// - INT_RDIST / INT_FIBBR latch when the status bit rises; L_ERRN is low while
+// - INT_RDIST / INT_FIBBR latch when the status bit rises, and a write of 1 does not clear
+//   them while it is 1 (Interrupts::set_level); L_ERRN is low while
 //   (RDIST & LEDIST) | (FIBBR & LEMISS).
 // docs/serial-and-ring.md, "Line monitor".
 #pragma once
