@@ -29,13 +29,15 @@ const ChipConfig& validated(const ChipConfig& config) {
 
 // Level of every output right after reset (the inactive level with the reset polarities
 // of the register table: INT0/INT1, CON_CLK, DIV_CLK active high; TXOE = 0 puts TxD1-6
-// into high impedance).
-Level reset_output_level(Pin p) {
+// into high impedance). Pin 24 is WDOGN on the 816 only; the 410B's TxDNRZ there (delta
+// spec 2.2 names it, nothing describes it) is not modelled and floats.
+Level reset_output_level(Pin p, Variant v) {
   switch (p) {
+    case Pin::WDOGN:
+      return v == Variant::Sercon410B ? Level::HighZ : Level::High;
     case Pin::BUSYN:
     case Pin::RECACTN:
     case Pin::IDLE:
-    case Pin::WDOGN:
     case Pin::L_ERRN:
       return Level::High;
     case Pin::TxD1:
@@ -86,7 +88,7 @@ Level initial_input_level(Pin p, const ChipConfig& c) {
 Level initial_level(Pin p, const ChipConfig& c) {
   switch (pin_info(p).direction) {
     case PinDirection::Out:
-      return reset_output_level(p);
+      return reset_output_level(p, c.variant);
     case PinDirection::In:
       return initial_input_level(p, c);
     case PinDirection::InOut:
@@ -171,7 +173,7 @@ void Chip::enter_reset(ResetCause cause) {
     // D15-0 and A15-0 belong to the bus interface (PinBus), which is not reset; BUSYN and
     // NDTRO (combinational) are driven by their owners without a glitch.
     if (dir == PinDirection::Out && p != Pin::BUSYN && p != Pin::NDTRO) {
-      set_output(p, reset_output_level(p));
+      set_output(p, reset_output_level(p, variant()));
     }
   }
   for (auto& u : units_) u->reset(cause);
