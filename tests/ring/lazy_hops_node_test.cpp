@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "../chip/line_tee.hpp"
 #include "repeating_chip.hpp"
 #include "ring_bench.hpp"
 #include "sercon/chip/chip.hpp"
@@ -306,26 +307,14 @@ std::vector<std::string> every_node_repeats(bool lazy) {
   AllRepeatRing all(lazy);
   sim::Scheduler& s = all.s;
   Ring& ring = all.ring;
-  struct Tap final : chip::LineListener {
-    Tap(sim::Scheduler& sch, chip::LineListener& to) : rec(sch), to_(to) {}
-    void line_condition(Time at, LineCondition c, Time p) override {
-      rec.line_condition(at, c, p);
-      to_.line_condition(at, c, p);
-    }
-    void line_burst(const LineBurst& b) override {
-      rec.line_burst(b);
-      to_.line_burst(b);
-    }
-    testing::Recorder rec;
-    chip::LineListener& to_;
-  } tap(s, ring.serial(0).rxd());
+  chip::testing::LineTee<testing::Recorder> tap(ring.serial(0).rxd(), s);
   ring.fibre(2).connect(tap);
   s.run_until(1000 * kBit);
   const Time at = s.now() + 10 * kBit;
   ring.serial(0).rxd().line_burst(LineBurst{at, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
   s.run_until(at + 400'000 * kBit);
   std::vector<std::string> trace;
-  for (const auto& e : tap.rec.events) trace.push_back(event_text(e));
+  for (const auto& e : tap.log.events) trace.push_back(event_text(e));
   return trace;
 }
 

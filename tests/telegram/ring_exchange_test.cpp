@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../chip/line_tee.hpp"
 #include "../chip/telegram_bench.hpp"
 #include "sercon/ring/ring.hpp"
 
@@ -62,22 +63,7 @@ class Tap final : public LineListener {
 
 // Sits between a fibre's far end and a receiver: passes everything on and logs, through a
 // Tap, the telegrams that arrive.
-class Relay final : public LineListener {
- public:
-  Relay(sim::Scheduler& scheduler, LineListener& target) : tap(scheduler), target_(target) {}
-  void line_condition(Time at, LineCondition condition, Time period) override {
-    tap.line_condition(at, condition, period);
-    target_.line_condition(at, condition, period);
-  }
-  void line_burst(const LineBurst& burst) override {
-    tap.line_burst(burst);
-    target_.line_burst(burst);
-  }
-  Tap tap;
-
- private:
-  LineListener& target_;
-};
+using Relay = testing::LineTee<Tap>;
 
 class RingExchange : public ::testing::Test {
  protected:
@@ -314,7 +300,7 @@ TEST_F(RingExchange, TheDriversRingClosedCheckFailsWhileAFibreIsBroken) {
 // - the master's returning MST, when hit, is not back: NMSTERR + 1 when the next MST goes
 //   out (datasheet 4.2 RAM word 10; docs/telegram-processing.md §3 "Returned MST").
 TEST_F(RingExchange, BitErrorsOnTheWayCountExactlyTheTelegramsTheyHit) {
-  Relay relay(scheduler, ring.serial(0).rxd());
+  Relay relay(ring.serial(0).rxd(), scheduler);
   ring.fibre(kSlaves).connect(relay);
   ring.fibre(kSlaves).set_bit_error_rate(0.002, 42);
   Chip& m = ring.master();
@@ -334,7 +320,7 @@ TEST_F(RingExchange, BitErrorsOnTheWayCountExactlyTheTelegramsTheyHit) {
   constexpr std::size_t kPerCycle = 6;  // MST, AT 1..4, MDT, as they leave slave 4
   constexpr std::size_t kNone = ~std::size_t{0};
   const std::vector<LineBurst>& out = taps[kSlaves]->bursts;
-  const std::vector<LineBurst>& in = relay.tap.bursts;
+  const std::vector<LineBurst>& in = relay.log.bursts;
   std::array<unsigned, kSlaves + 1> nerr{};
   std::array<std::uint16_t, kSlaves + 1> val_before{};  // VAL as the cycle before left it
   std::array<std::array<std::uint16_t, 2>, kSlaves + 1> data_before{};
