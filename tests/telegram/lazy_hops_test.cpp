@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "../chip/cp4_ring.hpp"
+#include "../chip/line_tee.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
 #include "sercon/chip/settled_line.hpp"
 
@@ -35,19 +36,14 @@ constexpr std::size_t kCycles = 10;
 
 using Trace = std::vector<std::string>;
 
-// Passes the last fibre's line on to the master's RxD and logs each change when it happens.
-class MasterTap final : public LineListener {
+// Logs each change of a line when it happens (settled: what is in force at that time).
+class SettledTrace final : public LineListener {
  public:
-  MasterTap(sim::Scheduler& s, LineListener& master, Trace& trace)
-      : master_(master), log_(s, trace), settled_(s, log_) {}
+  SettledTrace(sim::Scheduler& s, Trace& trace) : log_(s, trace), settled_(s, log_) {}
   void line_condition(sim::Time at, LineCondition c, sim::Time period) override {
     settled_.line_condition(at, c, period);
-    master_.line_condition(at, c, period);
   }
-  void line_burst(const LineBurst& b) override {
-    settled_.line_burst(b);
-    master_.line_burst(b);
-  }
+  void line_burst(const LineBurst& b) override { settled_.line_burst(b); }
 
  private:
   class Log final : public LineListener {
@@ -68,10 +64,12 @@ class MasterTap final : public LineListener {
     sim::Scheduler& s_;
     Trace& trace_;
   };
-  LineListener& master_;
   Log log_;
   SettledLine settled_;
 };
+
+// Passes the last fibre's line on to the master's RxD and logs each change when it happens.
+using MasterTap = testing::LineTee<SettledTrace>;
 
 // A listener on a TxD that logs what it is told, when it is told.
 class Heard final : public LineListener {
@@ -98,7 +96,7 @@ struct RingRun {
   explicit RingRun(bool lazy) {
     ring::Ring& r = cp4.ring();
     for (std::size_t i = 0; i <= kSlaves; ++i) r.serial(i).set_lazy_hops(lazy);
-    tap = std::make_unique<MasterTap>(cp4.scheduler(), r.serial(0).rxd(), trace);
+    tap = std::make_unique<MasterTap>(r.serial(0).rxd(), cp4.scheduler(), trace);
     r.fibre(kSlaves).connect(*tap);
     for (std::size_t i = 0; i <= kSlaves; ++i) {
       for (const Pin p : {Pin::BUSYN, Pin::INT0, Pin::INT1}) {
