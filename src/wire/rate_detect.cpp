@@ -20,27 +20,58 @@ constexpr std::size_t kMinIntervals = 8;
 constexpr double kSnapTolerance = 0.05;    // what the DPLL can follow over 8-bit runs
 constexpr double kMaxResidual = 0.45;      // |d/T - round(d/T)| for an interval that fits
 constexpr double kMaxMeanResidual = 0.18;  // over all intervals
+constexpr double kMaxDutyOffset = 0.3;     // duty-cycle distortion taken out, bits
+constexpr double kLongestLevelBits = 8;    // idle fill (sercos-facts §1)
+constexpr double kDarkBits = 64;           // longer: no signal, not the line code
+constexpr std::size_t kMaxLongLevelsPercent = 1;
 
 std::string rate_text(std::int64_t period_ps) {
   return fmt::format("{:.3f} ns = {:.3f} Mbit/s", static_cast<double>(period_ps) / 1000.0,
                      1e6 / static_cast<double>(period_ps));
 }
 
-// Whether the intervals are whole numbers (>= 1) of bits at period t: at most one in a
-// thousand may be off by more than kMaxResidual (glitches), and the mean residual must be
-// small. Jitter of ±J gives a mean of about 2J/3; a wrong rate such as 3 Mbit/s read as 4
-// gives about 0.22, a faster line read at half its rate 0.5 on every odd interval.
+// Half the difference between the mean signed residuals of the two levels' intervals (even
+// and odd positions, as the edges alternate): the duty-cycle distortion of a receiver whose
+// rising edges come early and falling edges late (or the reverse) lengthens one level's
+// intervals and shortens the other's by the same amount. Bounded, so it can only take out a
+// distortion the DPLL follows (±1/8 bit an edge shifts an interval by ±1/4).
+double duty_offset(std::span<const std::int64_t> intervals, double t) {
+  double sum[2] = {0, 0};
+  std::size_t count[2] = {0, 0};
+  for (std::size_t i = 0; i < intervals.size(); ++i) {
+    const double bits = static_cast<double>(intervals[i]) / t;
+    sum[i % 2] += bits - std::round(bits);
+    ++count[i % 2];
+  }
+  if (count[0] == 0 || count[1] == 0) return 0;
+  const double offset =
+      (sum[0] / static_cast<double>(count[0]) - sum[1] / static_cast<double>(count[1])) / 2;
+  return std::clamp(offset, -kMaxDutyOffset, kMaxDutyOffset);
+}
+
+// Whether the intervals are whole numbers (>= 1) of bits at period t, once the duty-cycle
+// distortion is taken out: at most one in a thousand may be off by more than kMaxResidual
+// (glitches), and the mean residual must be small. Jitter of ±J gives a mean of about 2J/3;
+// a wrong rate such as 3 Mbit/s read as 4 gives about 0.22, a faster line read at half its
+// rate 0.5 on every odd interval. And the line code must hold: no level lasts 9 to 64 bits
+// (sercos-facts §1: stuffing ends runs of 1s in a frame, idle fill changes level every 8
+// bits), so a slower line read at a multiple of its rate, whose 8-bit fill would read as
+// 16 or 32 bits, does not fit; longer levels are dark or light and not counted.
 bool fits(std::span<const std::int64_t> intervals, double t) {
+  const double offset = duty_offset(intervals, t);
   std::size_t misfits = 0;
+  std::size_t long_levels = 0;
   double residual_sum = 0;
-  for (std::int64_t d : intervals) {
-    const double bits = static_cast<double>(d) / t;
+  for (std::size_t i = 0; i < intervals.size(); ++i) {
+    const double bits = static_cast<double>(intervals[i]) / t - (i % 2 == 0 ? offset : -offset);
     const double whole = std::round(bits);
     const double residual = std::abs(bits - whole);
     residual_sum += residual;
     if (whole < 1.0 || residual > kMaxResidual) ++misfits;
+    if (whole > kLongestLevelBits && whole <= kDarkBits) ++long_levels;
   }
   return misfits * 1000 <= intervals.size() &&
+         long_levels * 100 <= kMaxLongLevelsPercent * intervals.size() &&
          residual_sum <= kMaxMeanResidual * static_cast<double>(intervals.size());
 }
 
@@ -104,7 +135,7 @@ std::int64_t detect_bit_period(std::span<const std::int64_t> intervals_ps) {
   }
   throw RecoveryError(
       fmt::format("clock recovery: edge intervals are not whole bit times at {} or any faster "
-                  "SERCOS rate (noise or glitches?); give the bit period",
+                  "SERCOS rate (noise, glitches, a change of rate?); give the bit period",
                   rate_text(kBitPeriodsPs[snapped])));
 }
 

@@ -175,6 +175,62 @@ TEST(ClockRecovery, DetectsRateUnderThreeSixteenthsJitter) {
   }
 }
 
+// Issue 2's "tolerant of at least ±1/8 bit of edge jitter" with the jitter a fibre receiver
+// adds most: duty-cycle distortion, rising edges 1/8 bit early and falling ones 1/8 bit late
+// (and the reverse), so one level's intervals are all 1/4 bit long and the other's short.
+// Detection takes the true rate (it once read 4 Mbit/s as 16, whose intervals 4n ± 1 were
+// whole), and the line comes back exact (docs/wire.md, "Rate detection").
+TEST(ClockRecovery, DutyCycleDistortionOfAnEighthBitKeepsTheRate) {
+  for (std::int64_t period : kBitPeriodsPs) {
+    for (std::int64_t shift : {period / 8, -period / 8}) {
+      const Stream s = make_stream(static_cast<std::uint64_t>(period) + 11, 6);
+      const auto edges = test::distorted_edges(s.line, period, shift);
+      const RecoveredLine r = recover_from_edges(s.line[0], edges, 0, end_of(s.line, period));
+      EXPECT_EQ(r.bit_period_ps, period) << "period " << period << " shift " << shift;
+      ASSERT_EQ(r.bits, s.line) << "period " << period << " shift " << shift;
+      expect_telegrams(r.bits, s.telegrams);
+    }
+  }
+}
+
+// Beyond the requirement detection may refuse, but never answers with a faster rate: edges
+// moved by exactly ±3/16 bit at random make intervals off by 0 or 3/8 bit, which once fitted
+// twice the rate better (2n ± 3/4) than the true one. The line code settles it
+// (sercos-facts §1: no level lasts more than 8 bits, the idle fill's; at twice the rate the
+// fill would last 16).
+TEST(ClockRecovery, HeavyBimodalJitterIsNeverReadAsAFasterRate) {
+  for (std::int64_t period : kBitPeriodsPs) {
+    const Stream s = make_stream(static_cast<std::uint64_t>(period) + 13, 6);
+    std::mt19937_64 rng(static_cast<std::uint64_t>(period) + 17);
+    const auto edges = test::bimodal_edges(s.line, period, period * 3 / 16, rng);
+    try {
+      const RecoveredLine r = recover_from_edges(s.line[0], edges, 0, end_of(s.line, period));
+      EXPECT_EQ(r.bit_period_ps, period);
+    } catch (const RecoveryError& e) {
+      EXPECT_NE(std::string(e.what()).find("give the bit period"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// A capture whose rate changes half-way (4 then 8 Mbit/s) has no one rate: detection
+// refuses it rather than decoding the 8 Mbit/s half and dropping the other without a word.
+TEST(ClockRecovery, ACaptureWhoseRateChangesIsRefused) {
+  const Stream s = make_stream(21, 6);
+  std::mt19937_64 rng(23);
+  auto edges = test::jittered_edges(s.line, 250'000, 0, rng);
+  const std::int64_t half = end_of(s.line, 250'000);
+  // The second half starts at the first half's first level: an edge to it if needed.
+  if (s.line[s.line.size() - 1] != s.line[0]) edges.push_back({half, s.line[0]});
+  for (const auto& e : test::jittered_edges(s.line, 125'000, 0, rng))
+    edges.push_back({half + 1 + e.time_ps, e.level});
+  try {
+    recover_from_edges(s.line[0], edges, 0, half + 1 + end_of(s.line, 125'000));
+    FAIL() << "no exception";
+  } catch (const RecoveryError& e) {
+    EXPECT_NE(std::string(e.what()).find("not whole bit times"), std::string::npos) << e.what();
+  }
+}
+
 // Brief: a rate that is not a SERCOS rate fails with a clear message.
 TEST(ClockRecovery, RejectsNonSercosRate) {
   const Stream s = make_stream(6, 3);

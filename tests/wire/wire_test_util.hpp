@@ -54,6 +54,32 @@ inline std::vector<Edge> jittered_edges(const LineBits& bits, std::int64_t perio
   return edges;
 }
 
+// Edges of `bits` at bit period `period` from time 0 with duty-cycle distortion: every
+// rising edge `shift` ps early and every falling edge `shift` ps late (or the reverse for a
+// negative shift), so high levels last 2 * shift longer and low levels as much shorter.
+inline std::vector<Edge> distorted_edges(const LineBits& bits, std::int64_t period,
+                                         std::int64_t shift) {
+  std::vector<Edge> edges;
+  for (std::size_t i = 1; i < bits.size(); ++i)
+    if (bits[i] != bits[i - 1])
+      edges.push_back(
+          {static_cast<std::int64_t>(i) * period + (bits[i] ? -shift : shift), bits[i]});
+  return edges;
+}
+
+// Edges of `bits` each moved by exactly +jitter or -jitter ps at random (the worst case of
+// a jitter bound: intervals off by 0 or 2 * jitter).
+inline std::vector<Edge> bimodal_edges(const LineBits& bits, std::int64_t period,
+                                       std::int64_t jitter, std::mt19937_64& rng) {
+  std::bernoulli_distribution late(0.5);
+  std::vector<Edge> edges;
+  for (std::size_t i = 1; i < bits.size(); ++i)
+    if (bits[i] != bits[i - 1])
+      edges.push_back(
+          {static_cast<std::int64_t>(i) * period + (late(rng) ? jitter : -jitter), bits[i]});
+  return edges;
+}
+
 // Samples of a line given by its edges: sample k (at k * sample_period) is the level
 // after the last edge at or before that time. Packed LSB first in 64-bit words.
 inline std::vector<std::uint64_t> sample_edges(bool initial_level, const std::vector<Edge>& edges,

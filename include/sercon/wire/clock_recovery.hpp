@@ -81,7 +81,8 @@ RecoveredLine recover_from_samples(std::span<const std::uint64_t> words, std::si
                                    const RecoveryOptions& options = {});
 
 // The detection alone: the bit period (ps) of a standard rate that explains the edge
-// intervals (ps, each > 0). Throws RecoveryError if none does.
+// intervals (ps, each > 0, in the order of the edges: the two levels alternate, which the
+// duty-cycle correction relies on). Throws RecoveryError if none does.
 std::int64_t detect_bit_period(std::span<const std::int64_t> intervals_ps);
 
 }  // namespace sercon::wire
