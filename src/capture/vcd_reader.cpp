@@ -41,12 +41,25 @@ class VcdParser {
   }
 
  private:
+  // The keywords of IEEE 1364 §18.2 (VCD declaration and simulation commands).
+  static bool is_command(std::string_view tok) {
+    static constexpr std::string_view kCommands[] = {
+        "$comment", "$date",    "$enddefinitions", "$scope",   "$timescale", "$upscope",
+        "$var",     "$version", "$dumpall",        "$dumpoff", "$dumpon",    "$dumpvars"};
+    for (std::string_view c : kCommands) {
+      if (tok == c) return true;
+    }
+    return false;
+  }
+
   [[noreturn]] void fail(const std::string& what) const {
     throw CaptureError(source_ + ":" + std::to_string(tokens_.line()) + ": " + what);
   }
 
   // Tokens up to the next $end. Structural commands keep them and may not contain
   // another command (a missing $end); free-text ones ($comment, $date, ...) are skipped.
+  // Other words starting with '$' are kept: an identifier code may be any printable
+  // character, '$' included (sigrok-cli and Icarus Verilog give the 4th signal "$").
   std::vector<std::string> until_end(const std::string& command, bool keep) {
     const std::size_t start = tokens_.line();
     std::vector<std::string> words;
@@ -58,7 +71,7 @@ class VcdParser {
       }
       if (tok == "$end") return words;
       if (keep) {
-        if (tok.front() == '$')
+        if (is_command(tok))
           fail("'" + std::string(tok) + "' inside " + command + ": missing $end");
         words.emplace_back(tok);
       }

@@ -129,5 +129,25 @@ TEST_F(SigrokCli, BinaryInputToVcdGivesTheEdgesWithinItsRounding) {
   }
 }
 
+// sigrok-cli numbers VCD identifier codes from '!', so the 4th channel's is '$' (VCD allows
+// any printable character); reading channel 3 of an 8-channel capture must work.
+TEST_F(SigrokCli, EightChannelVcdReadsTheChannelWhoseIdentifierIsDollar) {
+  const wire::LineBits bits = line();
+  std::string samples = testing::oversample(bits, 8);
+  for (char& c : samples) c = static_cast<char>(c << 3);  // the line on channel 3
+  testing::write_file(dir_ / "in.bin", samples);
+  const auto file = dir_ / "eight.vcd";
+  run("-I binary:numchannels=8:samplerate=64000000 -i " + shell_quote((dir_ / "in.bin").string()) +
+      " -O vcd -o " + shell_quote(file.string()));
+  const VcdTrace trace = read_vcd_file(file, "3");
+  EXPECT_EQ(trace.variable.reference, "3");
+  EXPECT_EQ(trace.variable.id, "$");
+  EXPECT_EQ(trace.initial_level, bits[0]);
+  std::size_t changes = 0;
+  for (std::size_t i = 1; i < bits.size(); ++i)
+    if (bits[i] != bits[i - 1]) ++changes;
+  EXPECT_EQ(trace.edges.size(), changes);
+}
+
 }  // namespace
 }  // namespace sercon::capture

@@ -54,6 +54,22 @@ TEST(VcdReader, EdgesInPicosecondsAfterTheInitialLevel) {
   EXPECT_EQ(trace.end_ps, 1'000'000);
 }
 
+// IEEE 1364 §18.2.1: an identifier code is any printable ASCII characters, '$' included
+// (sigrok-cli and Icarus Verilog give the 4th signal "$"); only a command keyword inside
+// $var is a missing $end.
+TEST(VcdReader, AnIdentifierCodeMayBeADollarSign) {
+  const std::string header =
+      "$timescale 1 ns $end\n$scope module top $end\n$var wire 1 ! a $end\n"
+      "$var wire 1 $ rx $end\n$var wire 1 $x b $end\n$upscope $end\n$enddefinitions $end\n";
+  const VcdTrace trace = read(header + "#0 0! 1$ 0$x\n#250 0$ 1!\n#500 1$\n#600\n", "rx");
+  EXPECT_EQ(trace.variable.id, "$");
+  EXPECT_TRUE(trace.initial_level);
+  expect_edges(trace, {{250'000, false}, {500'000, true}});
+  EXPECT_NE(error_of("$timescale 1 ns $end\n$var wire 1 ! rx $scope\n"), "(no error)");
+  EXPECT_NE(error_of("$timescale 1 ns $end\n$var wire 1 ! rx $scope\n").find("missing $end"),
+            std::string::npos);
+}
+
 TEST(VcdReader, CaptureStartIsTheFirstTimeStamp) {
   const VcdTrace trace = read(kHeader + "#100\n0!\n#150\n1!\n#200\n");
   EXPECT_EQ(trace.start_ps, 100'000);
