@@ -1,29 +1,37 @@
 #include "sercon/capture/vcd_variable.hpp"
 
-#include <algorithm>
+#include <string_view>
+#include <unordered_set>
 
 #include "sercon/capture/capture_error.hpp"
 
 namespace sercon::capture {
 namespace {
 
+// At most kListed names: an error message stays a line or two for a file with thousands.
+constexpr std::size_t kListed = 16;
+
 std::string name_list(const std::vector<const VcdVariable*>& variables) {
   std::string out;
-  for (const VcdVariable* v : variables) {
+  for (std::size_t i = 0; i < variables.size() && i < kListed; ++i) {
+    const VcdVariable* v = variables[i];
     if (!out.empty()) out += ", ";
     out += v->full_name();
     if (v->width != 1) out += " (" + std::to_string(v->width) + " bits)";
   }
+  if (variables.size() > kListed) {
+    out += " and " + std::to_string(variables.size() - kListed) + " more";
+  }
   return out.empty() ? std::string("none") : out;
 }
 
-// Aliases ($var lines that share an identifier code) are one signal.
-std::vector<const VcdVariable*> distinct_ids(std::vector<const VcdVariable*> found) {
+// Aliases ($var lines that share an identifier code) are one signal: the first of each, in
+// file order.
+std::vector<const VcdVariable*> distinct_ids(const std::vector<const VcdVariable*>& found) {
+  std::unordered_set<std::string_view> seen;
   std::vector<const VcdVariable*> out;
   for (const VcdVariable* v : found) {
-    const bool seen =
-        std::any_of(out.begin(), out.end(), [&](const VcdVariable* o) { return o->id == v->id; });
-    if (!seen) out.push_back(v);
+    if (seen.insert(v->id).second) out.push_back(v);
   }
   return out;
 }

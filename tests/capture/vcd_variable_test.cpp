@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "sercon/capture/capture_error.hpp"
 
 namespace sercon::capture {
@@ -47,6 +50,20 @@ TEST(VcdVariable, SeveralOneBitSignalsNeedSignalAndAreListed) {
   const std::string message = error_of(vars, "");
   EXPECT_NE(message.find("several 1-bit signals: top.rx, top.tx"), std::string::npos) << message;
   EXPECT_NE(message.find("--signal"), std::string::npos) << message;
+}
+
+// Brief ("bad input gets a clear error"): a file with thousands of signals and no --signal
+// gets an error of a line or two: the first 16 names and how many more, not all of them.
+TEST(VcdVariable, AListOfThousandsOfSignalsIsCutShort) {
+  std::vector<VcdVariable> vars;
+  for (int i = 0; i < 20'000; ++i) {
+    const std::string n = std::to_string(i);
+    vars.push_back(var("wire", 1, std::string("id").append(n), std::string("s").append(n), "t"));
+  }
+  const std::string e = error_of(vars, "");
+  EXPECT_NE(e.find("t.s0, t.s1"), std::string::npos) << e;
+  EXPECT_NE(e.find("t.s15 and 19984 more; choose one with --signal NAME"), std::string::npos) << e;
+  EXPECT_LT(e.size(), 400u);
 }
 
 TEST(VcdVariable, NoOneBitSignalListsWhatThereIs) {
