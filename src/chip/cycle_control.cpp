@@ -124,11 +124,6 @@ void CycleControl::on_register_change(std::uint8_t address) {
   if (cycle_time && mode_ == Mode::MasterTimer && timer_idle_) start_timer_now();
 }
 
-sim::Time CycleControl::after_edges(sim::Time from, Edge edges) const {
-  const MclkGrid& mclk = time_base_.mclk();
-  return mclk.time_of(mclk.first_at_or_after(from) + edges);
-}
-
 void CycleControl::recognise_at(sim::Time at, sim::Scheduler::Action action) {
   // Ids of events that ran stay until a few have gathered (cancelling them is harmless):
   // one MST per cycle need not scan the list each time.
@@ -147,7 +142,7 @@ void CycleControl::slave_mst_action(void* control) {
 }
 
 void CycleControl::mst_detected(sim::Time when) {
-  const sim::Time load = after_edges(when, kMstSyncEdges);
+  const sim::Time load = time_base_.mclk().nth_edge_after(when, kMstSyncEdges);
   if (load < scheduler_.now()) {
     throw std::invalid_argument("CycleControl::mst_detected: an MST recognised at " +
                                 std::to_string(when) + " ps would load the counter at " +
@@ -172,7 +167,8 @@ void CycleControl::on_cyc_clk(sim::Level level) {
   cyc_clk_high_ = high;
   const bool active_edge = cycpol_.on(regs_) ? !high : high;
   if (!active_edge || !running_ || mode_ != Mode::MasterCycClk) return;
-  recognise_at(after_edges(scheduler_.now(), kCycClkSyncEdges), &CycleControl::cyc_clk_action);
+  recognise_at(time_base_.mclk().nth_edge_after(scheduler_.now(), kCycClkSyncEdges),
+               &CycleControl::cyc_clk_action);
 }
 
 void CycleControl::cyc_clk_recognised() {

@@ -55,9 +55,6 @@ class CycleControl : public ChipUnit {
   void switch_mode(Mode mode);
   void on_register_change(std::uint8_t address);
   void on_cyc_clk(sim::Level level);
-  // The `edges`-th MCLK edge after the first edge at or after `from`: where a synchroniser
-  // recognises what came at `from`.
-  sim::Time after_edges(sim::Time from, Edge edges) const;
   // `action(this)` at `at` (function + context: no std::function per MST).
   void recognise_at(sim::Time at, sim::Scheduler::Action action);
   static void cyc_clk_action(void* control);

@@ -36,6 +36,9 @@ class MclkGrid {
   sim::Time time_of(Edge edge) const;         // floor(edge * 1e12 / f_MCLK)
   Edge first_at_or_after(sim::Time t) const;  // 0 for t <= 0
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
+  // The `n`-th edge after the first at or after t: where a synchroniser of n flip-flops
+  // takes up what came at t (a receiver's report, a slave's MST load, CYC_CLK).
+  sim::Time nth_edge_after(sim::Time t, Edge n) const { return time_of(first_at_or_after(t) + n); }
 
  private:
   // floor(u / den_) and its remainder by a multiply with the reciprocal (sim::Reciprocal):

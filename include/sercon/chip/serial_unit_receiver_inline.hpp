@@ -30,8 +30,7 @@ inline sim::Time SerialReceiver::report_lag(sim::Time period) const {
 inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
   const sim::Time half_bits = five_and_a_half_bits(period);
   // kDetectionEdges MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
-  const MclkGrid& mclk = unit_.chip().mclk();
-  return mclk.time_of(mclk.first_at_or_after(t + half_bits) + kDetectionEdges);
+  return unit_.chip().mclk().nth_edge_after(t + half_bits, kDetectionEdges);
 }
 
 }  // namespace sercon::chip
