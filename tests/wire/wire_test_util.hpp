@@ -42,16 +42,22 @@ inline std::string decoded_string(const LineBits& bits, bool level_before) {
   return s;
 }
 
-// Edges of `bits` at bit period `period` from time 0, each moved by uniform random jitter
-// in [-jitter, +jitter] ps. The capture spans [0, bits.size() * period].
-inline std::vector<Edge> jittered_edges(const LineBits& bits, std::int64_t period,
-                                        std::int64_t jitter, std::mt19937_64& rng) {
-  std::uniform_int_distribution<std::int64_t> shift(-jitter, jitter);
+// Edges of `bits` at bit period `period` from time 0, each moved by shift(level after it)
+// ps. The capture spans [0, bits.size() * period].
+template <class Shift>
+std::vector<Edge> shifted_edges(const LineBits& bits, std::int64_t period, Shift shift) {
   std::vector<Edge> edges;
   for (std::size_t i = 1; i < bits.size(); ++i)
     if (bits[i] != bits[i - 1])
-      edges.push_back({static_cast<std::int64_t>(i) * period + shift(rng), bits[i]});
+      edges.push_back({static_cast<std::int64_t>(i) * period + shift(bits[i]), bits[i]});
   return edges;
+}
+
+// Each edge moved by uniform random jitter in [-jitter, +jitter] ps.
+inline std::vector<Edge> jittered_edges(const LineBits& bits, std::int64_t period,
+                                        std::int64_t jitter, std::mt19937_64& rng) {
+  std::uniform_int_distribution<std::int64_t> shift(-jitter, jitter);
+  return shifted_edges(bits, period, [&](bool) { return shift(rng); });
 }
 
 // Edges of `bits` at bit period `period` from time 0 with duty-cycle distortion: every
@@ -59,12 +65,7 @@ inline std::vector<Edge> jittered_edges(const LineBits& bits, std::int64_t perio
 // negative shift), so high levels last 2 * shift longer and low levels as much shorter.
 inline std::vector<Edge> distorted_edges(const LineBits& bits, std::int64_t period,
                                          std::int64_t shift) {
-  std::vector<Edge> edges;
-  for (std::size_t i = 1; i < bits.size(); ++i)
-    if (bits[i] != bits[i - 1])
-      edges.push_back(
-          {static_cast<std::int64_t>(i) * period + (bits[i] ? -shift : shift), bits[i]});
-  return edges;
+  return shifted_edges(bits, period, [shift](bool rising) { return rising ? -shift : shift; });
 }
 
 // Edges of `bits` each moved by exactly +jitter or -jitter ps at random (the worst case of
@@ -72,12 +73,7 @@ inline std::vector<Edge> distorted_edges(const LineBits& bits, std::int64_t peri
 inline std::vector<Edge> bimodal_edges(const LineBits& bits, std::int64_t period,
                                        std::int64_t jitter, std::mt19937_64& rng) {
   std::bernoulli_distribution late(0.5);
-  std::vector<Edge> edges;
-  for (std::size_t i = 1; i < bits.size(); ++i)
-    if (bits[i] != bits[i - 1])
-      edges.push_back(
-          {static_cast<std::int64_t>(i) * period + (late(rng) ? jitter : -jitter), bits[i]});
-  return edges;
+  return shifted_edges(bits, period, [&](bool) { return late(rng) ? jitter : -jitter; });
 }
 
 // Samples of a line given by its edges: sample k (at k * sample_period) is the level
