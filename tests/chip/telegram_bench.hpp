@@ -70,6 +70,17 @@ class TestFibre final : public LineListener {
     }
     target_->line_burst(out);
   }
+  // A lazy hop through this fibre (line.hpp): taken as line_burst() takes it, handed back
+  // for the sender to deliver. So the rings built of these fibres run the chips' lazy hops,
+  // as ring::Ring does. A telegram to corrupt takes line_burst().
+  bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) override {
+    if (target_ == nullptr || corrupt_countdown_ > 0) return false;
+    settled_.line_burst(burst);
+    const Time start = burst.start + delay_;  // read first: `out` may be `burst`
+    next = target_;
+    out = LineBurst{start, burst.bit_period, burst.bits};
+    return true;
+  }
 
   // The `n`-th telegram from now (1 = the next) gets line bit `bit` inverted.
   void corrupt(unsigned n, std::size_t bit) {
