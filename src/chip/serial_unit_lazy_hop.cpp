@@ -42,6 +42,7 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   if (!on_start_ && !on_telegram_) return false;
   if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
   for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+    if (!may_want(f)) continue;
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
     if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
       return true;
@@ -130,6 +131,7 @@ bool SerialReceiver::lazy_report_due(sim::Time now) const {
     const LineBurst& b = lazy_[i].burst;
     if (b.end() + report_lag(b.bit_period) < now) continue;  // its reports are past
     for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+      if (!may_want(f)) continue;
       const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
       if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
         return true;

@@ -350,6 +350,7 @@ inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best) {
 }
 
 void SerialReceiver::plan_reports() {
+  refresh_interest();
   const sim::Time now = scheduler_.now();
   if (!lazy_.empty() && lazy_report_due(now)) absorb_lazy();
   Report best{kNever, 0, 0, false};
@@ -400,6 +401,7 @@ void SerialReceiver::fire_report() {
   } else {
     st.start_done = true;
     on_start_(start, f.address);
+    refresh_interest();
     if (plan_telegram_after_start(r)) return;
   }
   plan_reports();

@@ -277,6 +277,13 @@ bool TelegramProcessor::wants_telegram(sim::Time start, const wire::DecodedFrame
   return is_mst(frame) || (receiving_ && receiving_->start == start);
 }
 
+// Only a waiting receive header (offer(), wants_start) or a telegram being received
+// (wants_telegram) makes a telegram other than an MST count; every change of either comes
+// with interest_changed() or inside a report's handler.
+bool TelegramProcessor::may_want_addressed() const {
+  return list_.waits_for_telegram() || receiving_.has_value();
+}
+
 // The address byte is in after the opening flag and the address with at most one stuffed
 // bit (17 bits); the receiver reports it 5.5 bits + 3..4 MCLK later (docs/serial-and-ring.md).
 sim::Time TelegramProcessor::start_report_delay() const {

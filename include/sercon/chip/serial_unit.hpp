@@ -57,6 +57,10 @@ class ReceiveInterest {
   virtual bool wants_start(sim::Time start, std::uint8_t address) const = 0;
   // A telegram that began at `start` is detected (whole or cut off by an error).
   virtual bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const = 0;
+  // False: both answers are false for every telegram whose address is not 255, whatever its
+  // start, until the processor calls interest_changed() or is handed a report. Lets the
+  // receiver pass such telegrams on without asking (a lazy hop asks at every node).
+  virtual bool may_want_addressed() const { return true; }
 };
 
 class SerialUnit : public ChipUnit {

@@ -177,6 +177,14 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // per hop of a lazy chain.
   inline bool try_lazy_hop(const LineBurst& burst);
   bool wants_a_report(const LineBurst& burst) const;
+  // Whether the processor may want a frame (the lazy checks): only those to address 255
+  // are asked while it wants no other (ReceiveInterest::may_want_addressed).
+  bool may_want(const wire::DecodedFrame& frame) const {
+    return addressed_wanted_ || frame.address == kAddress255;
+  }
+  void refresh_interest() {
+    addressed_wanted_ = interest_ == nullptr || interest_->may_want_addressed();
+  }
   void absorb_waiting();
   inline void prune_lazy(sim::Time now);
   inline void drop_lazy_over(sim::Time now);
@@ -226,6 +234,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   SerialUnit::TelegramStartHandler on_start_;
   SerialUnit::TelegramHandler on_telegram_;
   const ReceiveInterest* interest_ = nullptr;
+  static constexpr std::uint8_t kAddress255 = 0xFF;  // MSTs and telegrams to all drives
+  // interest_->may_want_addressed(), asked again at every plan and after every report.
+  bool addressed_wanted_ = true;
   // Never empty; front in force now (or earlier). A vector: it holds a handful of entries,
   // and a deque of entries this size would allocate a block every second one.
   std::vector<Entry> timeline_;

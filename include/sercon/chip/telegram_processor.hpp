@@ -83,6 +83,7 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   // ReceiveInterest: the receiver reports only what this would act on.
   bool wants_start(sim::Time start, std::uint8_t address) const override;
   bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const override;
+  bool may_want_addressed() const override;
 
   Chip& chip_;
   RegisterFile& regs_;
