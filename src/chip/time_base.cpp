@@ -60,11 +60,6 @@ void TimeBase::release() {
   base_ = 0;
 }
 
-std::int64_t TimeBase::count() const {
-  if (!running_) return 0;
-  return base_ + ticks_.count_through(now_edge());
-}
-
 std::uint16_t TimeBase::tscyc() const {
   const std::uint16_t phase_byte = regmode_.on(regs_) ? phas0_.get(regs_) : phasr_.get(regs_);
   return regs_.value((phase_byte & 0x07) <= 2 ? kTscyc0 : kTscyc1);
@@ -102,40 +97,31 @@ void TimeBase::begin(CycleKind kind, std::int64_t count) {
 // or were cancelled.
 void TimeBase::drop_future_events() {
   const sim::Time now = scheduler_.now();
-  std::size_t kept = 0;
+  Planned* kept = planned_.data();
   for (const Planned& planned : planned_) {
     if (planned.when > now) {
       scheduler_.cancel(planned.event);
     } else if (planned.when == now && scheduler_.pending(planned.event)) {
-      planned_[kept++] = planned;
+      *kept++ = planned;
     }
   }
-  planned_.resize(kept);
+  planned_.erase(planned_.begin() + (kept - planned_.data()), planned_.end());
 }
 
-template <typename Schedule>
-TimeBase::CycleEvent TimeBase::plan(std::int64_t cycle_time, Schedule event_at) {
-  const std::optional<sim::Time> step = step_ahead(cycle_time);
-  if (!step) return 0;
-  if (planned_.size() >= prune_at_) {
-    std::erase_if(planned_,
-                  [this](const Planned& planned) { return !scheduler_.pending(planned.event); });
-    prune_at_ = std::max<std::size_t>(16, 2 * planned_.size());
-  }
-  const sim::Time when = *step;
-  const sim::Scheduler::EventId event = event_at(when);
-  planned_.push_back(Planned{event, cycle_time, when});
-  return event.value;
+void TimeBase::prune() {
+  std::erase_if(planned_,
+                [this](const Planned& planned) { return !scheduler_.pending(planned.event); });
+  prune_at_ = std::max<std::size_t>(16, 2 * planned_.size());
 }
 
 TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
                                              std::function<void()> callback) {
-  return plan(cycle_time, [&](sim::Time when) { return scheduler_.at(when, std::move(callback)); });
-}
-
-TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action,
-                                             void* context) {
-  return plan(cycle_time, [&](sim::Time when) { return scheduler_.at(when, action, context); });
+  const std::optional<sim::Time> step = step_ahead(cycle_time);
+  if (!step) return 0;
+  if (planned_.size() >= prune_at_) prune();
+  const sim::Scheduler::EventId event = scheduler_.at(*step, std::move(callback));
+  planned_.push_back(Planned{event, cycle_time, *step});
+  return event.value;
 }
 
 std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) const {

@@ -62,7 +62,11 @@ class TimeBase : public ChipUnit {
   sim::Time tick_duration() const { return mclk_.time_of(tick_period()); }
 
   // The counter now, not wrapped (TCNT reads it modulo 2^16); 0 while held in reset.
-  std::int64_t count() const;
+  // Inline: a slave's window asks at every MST.
+  std::int64_t count() const {
+    if (!running_) return 0;
+    return base_ + ticks_.count_through(now_edge());
+  }
   std::uint16_t tcnt() const { return static_cast<std::uint16_t>(count() & 0xFFFF); }
   // TSCYC0 in phases 0..2, TSCYC1 in phases 3..7. The phase is PHAS0 (the byte a master
   // sends) in master mode and PHASR (the byte of the last MST received) in slave mode.
@@ -82,7 +86,15 @@ class TimeBase : public ChipUnit {
   CycleEvent at_cycle_time(std::int64_t cycle_time, std::function<void()> callback);
   // The same with `action(context)` (no std::function: for units that arm several
   // events per cycle). `context` must outlive the event.
-  CycleEvent at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action, void* context);
+  // Inline: a chip's lists and window arm a couple of dozen per cycle.
+  CycleEvent at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action, void* context) {
+    const std::optional<sim::Time> step = step_ahead(cycle_time);
+    if (!step) return 0;
+    if (planned_.size() >= prune_at_) prune();
+    const sim::Scheduler::EventId event = scheduler_.at(*step, action, context);
+    planned_.push_back(Planned{event, cycle_time, *step});
+    return event.value;
+  }
   void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
   std::optional<sim::Time> when(CycleEvent event) const {
@@ -125,11 +137,9 @@ class TimeBase : public ChipUnit {
   sim::Time time_of_step(std::int64_t cycle_time) const {
     return mclk_.time_of(ticks_.edge_of(tick_of(cycle_time)));
   }
-  // Asks the scheduler for `event_at(when)` and keeps the event in planned_.
-  template <typename Schedule>
-  CycleEvent plan(std::int64_t cycle_time, Schedule event_at);
   Edge now_edge() const { return mclk_.last_at_or_before(scheduler_.now()); }
   std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
+  void prune();  // drops the planned_ entries of events that ran or were cancelled
   void drop_future_events();
   void cancel_all();
   void begin(CycleKind kind, std::int64_t count);  // `count`: the counter now
