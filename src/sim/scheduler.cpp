@@ -128,6 +128,11 @@ Scheduler::EventId Scheduler::at(Time when, Callback callback) {
   return take_slot(index, when);
 }
 
+std::size_t Scheduler::pending_count() const {
+  return static_cast<std::size_t>(std::count_if(
+      slots_.begin(), slots_.end(), [](const Slot& slot) { return slot.generation % 2 == 1; }));
+}
+
 bool Scheduler::move(EventId id, Time when) {
   if (when < now_) throw_past("Scheduler::move", when, now_);
   if (live_slot(id) == nullptr) return false;

@@ -71,7 +71,8 @@ class Scheduler {
   // already due at `when`, as if scheduled anew. Throws std::invalid_argument if `when`
   // is in the past; returns false (moving nothing) when the event is not pending.
   bool move(EventId id, Time when);
-  std::size_t pending_count() const { return live_count_; }
+  // Counts the live slots: for tests and checks, not the event loop (which keeps no count).
+  std::size_t pending_count() const;
 
   // Runs every event due at or before `until`, then sets the clock to `until`.
   // Throws std::invalid_argument if `until` is in the past.
@@ -115,7 +116,6 @@ class Scheduler {
     free_head_ = slot.next_free;
     const std::uint32_t generation = ++slot.generation;  // odd: live
     slot.when = when;
-    ++live_count_;
     insert(when, index, generation);
     return EventId{std::uint64_t{generation} << 32 | (index + 1u)};
   }
@@ -124,7 +124,6 @@ class Scheduler {
     ++slot.generation;  // even: stale ids and queue entries no longer match
     slot.next_free = free_head_;
     free_head_ = index + 1;
-    --live_count_;
   }
   void release(std::uint32_t index);  // cancels a live slot
   const Slot* live_slot(EventId id) const {
@@ -189,7 +188,6 @@ class Scheduler {
   void run_callback(std::uint32_t index);
 
   Time now_ = 0;
-  std::size_t live_count_ = 0;
   // Entries due at or before near_limit_ are in near_, the others in far_. Most events
   // are due soon and land at or near the back of the short near_ run; the few due much
   // later (a cycle's window close) wait in far_ and do not make every placement move
