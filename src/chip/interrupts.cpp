@@ -48,8 +48,6 @@ Interrupts::Interrupts(RegisterFile& regs, Output int0, Output int1)
 
 void Interrupts::reset(ResetCause) { refresh(); }
 
-void Interrupts::raise(Irq source) { field(source).set(regs_, true); }
-
 void Interrupts::set_level(Irq source, bool high) {
   const FieldRef& f = field(source);
   if (high) f.set(regs_, true);
