@@ -87,7 +87,8 @@ class TimeBase : public ChipUnit {
   // The same with `action(context)` (no std::function: for units that arm several
   // events per cycle). `context` must outlive the event.
   // Inline: a chip's lists and window arm a couple of dozen per cycle.
-  CycleEvent at_cycle_time(std::int64_t cycle_time, sim::Scheduler::Action action, void* context) {
+  [[gnu::always_inline]] CycleEvent at_cycle_time(std::int64_t cycle_time,
+                                                  sim::Scheduler::Action action, void* context) {
     const std::optional<sim::Time> step = step_ahead(cycle_time);
     if (!step) return 0;
     if (planned_.size() >= prune_at_) prune();
