@@ -23,7 +23,7 @@ ConClk::ConClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
       interrupts_(interrupts),
       pin_(std::move(pin)),
       polconclk_(field_ref("POLCONCLK", regs_.variant())),
-      end_(time_base.scheduler(), time_base.mclk()) {
+      end_(time_base.scheduler(), time_base.mclk(), [this] { ends(); }) {
   time_base_.on_cycle_start(this, [](void* con_clk, const CycleStart& start) {
     static_cast<ConClk*>(con_clk)->plan(start);
   });
@@ -53,7 +53,7 @@ void ConClk::starts() {
   active_ = true;
   drive();
   const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
-  end_.at_edge(now + regs_.value(kWconclk) * time_base_.tick_period(), [this] { ends(); });
+  end_.at_edge(now + regs_.value(kWconclk) * time_base_.tick_period());
 }
 
 // The next cycle's start at this very instant continues the output without a gap.

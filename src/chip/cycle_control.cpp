@@ -44,8 +44,8 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
                 // Slave: keep the cycle going one TSCYC after the missing MST's slot.
                 if (mode_ == Mode::Slave) time_base_.shift_cycle(window_.tscyc());
               }),
-      next_cycle_(time_base.scheduler(), time_base.mclk()),
-      mst_send_(time_base.scheduler(), time_base.mclk()) {
+      next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
+      mst_send_(time_base.scheduler(), time_base.mclk(), [this] { send_mst(); }) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.watch([this](sim::Level level) { on_cyc_clk(level); });
   time_base_.on_cycle_start(this, [](void* control, const CycleStart& start) {
@@ -109,8 +109,7 @@ void CycleControl::start_timer_now() {
     return;
   }
   timer_idle_ = false;
-  next_cycle_.at_edge(time_base_.mclk().first_at_or_after(scheduler_.now()),
-                      [this] { master_cycle_start(); });
+  next_cycle_.at_edge(time_base_.mclk().first_at_or_after(scheduler_.now()));
 }
 
 void CycleControl::on_register_change(std::uint8_t address) {
@@ -188,7 +187,7 @@ void CycleControl::master_cycle_start() {
     mst_send_.cancel();
     send_mst();
   } else {
-    mst_send_.at_tick(cycle_ticks_, delay, [this] { send_mst(); });
+    mst_send_.at_tick(cycle_ticks_, delay);
   }
   if (mode_ != Mode::MasterTimer) return;
   const std::uint16_t tscyc = time_base_.tscyc();
@@ -196,7 +195,7 @@ void CycleControl::master_cycle_start() {
     timer_idle_ = true;
     return;
   }
-  next_cycle_.at_tick(cycle_ticks_, tscyc, [this] { master_cycle_start(); });
+  next_cycle_.at_tick(cycle_ticks_, tscyc);
 }
 
 void CycleControl::send_mst() {

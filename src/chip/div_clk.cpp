@@ -25,7 +25,7 @@ DivClk::DivClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
       ndivclk_(field_ref("NDIVCLK", regs_.variant())),
       poldivclk_(field_ref("POLDIVCLK", regs_.variant())),
       divclkmode_(field_ref("DIVCLKMODE", regs_.variant())),
-      end_(time_base.scheduler(), time_base.mclk()) {
+      end_(time_base.scheduler(), time_base.mclk(), [this] { pulse_ends(); }) {
   time_base_.on_cycle_start(this, [](void* div_clk, const CycleStart& start) {
     static_cast<DivClk*>(div_clk)->plan(start);
   });
@@ -87,7 +87,7 @@ void DivClk::pulse_starts() {
   active_ = true;
   drive();
   const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
-  end_.at_edge(now + time_base_.tick_period(), [this] { pulse_ends(); });
+  end_.at_edge(now + time_base_.tick_period());
 }
 
 // A pulse starting at this very instant (DTDIVCLK = 1, or the next cycle's first pulse)

@@ -1,20 +1,17 @@
 #include "sercon/chip/tick_alarm.hpp"
 
 #include <algorithm>
-#include <utility>
 
 namespace sercon::chip {
 
-void TickAlarm::at_tick(const DividerTicks& ticks, std::int64_t k, std::function<void()> callback) {
+void TickAlarm::at_tick(const DividerTicks& ticks, std::int64_t k) {
   cancel();
-  callback_ = std::move(callback);
   tick_ = std::max<std::int64_t>(k, 1);
   schedule(ticks.edge_of(tick_));
 }
 
-void TickAlarm::at_edge(Edge edge, std::function<void()> callback) {
+void TickAlarm::at_edge(Edge edge) {
   cancel();
-  callback_ = std::move(callback);
   tick_ = 0;
   schedule(edge);
 }
@@ -39,9 +36,7 @@ void TickAlarm::schedule(Edge edge) {
 void TickAlarm::fire(void* alarm) {
   auto& a = *static_cast<TickAlarm*>(alarm);
   a.event_ = {};
-  auto callback = std::move(a.callback_);
-  a.callback_ = nullptr;
-  callback();
+  a.callback_();  // may arm the alarm again: that leaves callback_ as it is
 }
 
 }  // namespace sercon::chip

@@ -36,8 +36,8 @@ Watchdog::Watchdog(TimeBase& time_base, Interrupts& interrupts, Output wdogn)
       regmode_(field_ref("REGMODE", regs_.variant())),
       entmt_(field_ref("ENTMT", regs_.variant())),
       phas0_(field_ref("PHAS0", regs_.variant())),
-      expiry_(time_base.scheduler(), time_base.mclk()),
-      output_end_(time_base.scheduler(), time_base.mclk()) {
+      expiry_(time_base.scheduler(), time_base.mclk(), [this] { expire(); }),
+      output_end_(time_base.scheduler(), time_base.mclk(), [this] { drive_output(false); }) {
   if (!present_) return;
   regs_.on_write(kWdCtrl,
                  [this](std::uint16_t written, std::uint16_t) { on_control_write(written); });
@@ -92,9 +92,9 @@ void Watchdog::load() {
   ticks_ = DividerTicks::started_at(now, period, period);
   const std::uint16_t preset = regs_.value(kTwdog);
   if (preset == 0) {
-    expiry_.at_edge(now, [this] { expire(); });
+    expiry_.at_edge(now);
   } else {
-    expiry_.at_tick(ticks_, preset, [this] { expire(); });
+    expiry_.at_tick(ticks_, preset);
   }
 }
 
@@ -112,8 +112,7 @@ void Watchdog::expire() {
   // Delta spec 2.6.1: WDOGN "remains active for the next minimum 2, maximum 3 periods".
   drive_output(true);
   const sim::Time now = time_base_.scheduler().now();
-  output_end_.at_edge(time_base_.free_tick_after(now, kOutputTicks),
-                      [this] { drive_output(false); });
+  output_end_.at_edge(time_base_.free_tick_after(now, kOutputTicks));
 }
 
 void Watchdog::drive_output(bool low) {

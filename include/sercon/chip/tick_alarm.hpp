@@ -1,10 +1,12 @@
 // One scheduled callback at a tick of a divider (or at a given MCLK edge) that can be
 // moved when the divider's period changes. Cancels itself when destroyed, so no event
-// outlives the unit that owns it.
+// outlives the unit that owns it. The callback is the alarm's for good (each alarm of a
+// unit always calls the same member), so arming it copies no function object.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <utility>
 
 #include "sercon/chip/mclk_divider.hpp"
 #include "sercon/sim/scheduler.hpp"
@@ -13,15 +15,16 @@ namespace sercon::chip {
 
 class TickAlarm {
  public:
-  TickAlarm(sim::Scheduler& scheduler, const MclkGrid& mclk) : scheduler_(scheduler), mclk_(mclk) {}
+  TickAlarm(sim::Scheduler& scheduler, const MclkGrid& mclk, std::function<void()> callback)
+      : scheduler_(scheduler), mclk_(mclk), callback_(std::move(callback)) {}
   ~TickAlarm() { cancel(); }
   TickAlarm(const TickAlarm&) = delete;
   TickAlarm& operator=(const TickAlarm&) = delete;
 
-  // Calls `callback` at tick `k` (>= 1) of `ticks`; replaces what was set before.
-  void at_tick(const DividerTicks& ticks, std::int64_t k, std::function<void()> callback);
-  // Calls `callback` at MCLK edge `edge`; retime() leaves it where it is.
-  void at_edge(Edge edge, std::function<void()> callback);
+  // Calls the callback at tick `k` (>= 1) of `ticks`; replaces what was set before.
+  void at_tick(const DividerTicks& ticks, std::int64_t k);
+  // Calls the callback at MCLK edge `edge`; retime() leaves it where it is.
+  void at_edge(Edge edge);
   // The divider's period changed at edge `changed_at`: move a tick alarm that is due
   // after that edge to its tick's new edge.
   void retime(const DividerTicks& ticks, Edge changed_at);
