@@ -58,13 +58,6 @@ Edge MclkGrid::wide_last_at_or_before(sim::Time t) const {
   return static_cast<Edge>(floor_div((Wide{t} + 1) * hz_ - 1, sim::kSecond));
 }
 
-DividerTicks DividerTicks::started_at(Edge start, std::int64_t first_delay, std::int64_t period) {
-  DividerTicks ticks;
-  ticks.first_ = start + std::max<std::int64_t>(first_delay, 1);
-  ticks.period_ = std::max<std::int64_t>(period, 1);
-  return ticks;
-}
-
 void DividerTicks::change_period(Edge now, std::int64_t period) {
   const std::int64_t next = count_through(now) + 1;
   first_ = edge_of(next);

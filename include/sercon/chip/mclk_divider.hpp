@@ -12,6 +12,7 @@
 // the 128-bit formula; both give identical results (MclkGrid.FastPathMatchesThe128BitFormula).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "sercon/sim/reciprocal.hpp"
@@ -122,7 +123,13 @@ class DividerTicks {
   DividerTicks() = default;
   // Restarted at edge `start`: first tick `first_delay` edges later, then one every
   // `period` edges. Both are taken as at least 1 (a divider cannot tick twice per edge).
-  static DividerTicks started_at(Edge start, std::int64_t first_delay, std::int64_t period);
+  // Inline: every cycle start of every chip restarts one.
+  static DividerTicks started_at(Edge start, std::int64_t first_delay, std::int64_t period) {
+    DividerTicks ticks;
+    ticks.first_ = start + std::max<std::int64_t>(first_delay, 1);
+    ticks.period_ = std::max<std::int64_t>(period, 1);
+    return ticks;
+  }
 
   std::int64_t period() const { return period_; }
   // Ticks counted before the last period change (0 after a restart): edge_of() holds for
