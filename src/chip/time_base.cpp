@@ -112,14 +112,14 @@ void TimeBase::begin(CycleKind kind, std::int64_t count) {
 void TimeBase::prune() {
   std::erase_if(planned_,
                 [this](const Planned& planned) { return !scheduler_.pending(planned.event); });
-  prune_at_ = std::max<std::size_t>(16, 2 * planned_.size());
+  planned_.reserve(std::max<std::size_t>(16, 2 * planned_.size()));
 }
 
 TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
                                              std::function<void()> callback) {
   const std::optional<sim::Time> step = step_ahead(cycle_time);
   if (!step) return 0;
-  if (planned_.size() >= prune_at_) prune();
+  if (planned_.size() == planned_.capacity()) prune();
   const sim::Scheduler::EventId event = scheduler_.at(*step, std::move(callback));
   planned_.push_back(Planned{event, cycle_time, *step});
   return event.value;

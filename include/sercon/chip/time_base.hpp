@@ -91,7 +91,7 @@ class TimeBase : public ChipUnit {
                                                   sim::Scheduler::Action action, void* context) {
     const std::optional<sim::Time> step = step_ahead(cycle_time);
     if (!step) return 0;
-    if (planned_.size() >= prune_at_) prune();
+    if (planned_.size() == planned_.capacity()) prune();
     const sim::Scheduler::EventId event = scheduler_.at(*step, action, context);
     planned_.push_back(Planned{event, cycle_time, *step});
     return event.value;
@@ -140,7 +140,9 @@ class TimeBase : public ChipUnit {
   }
   Edge now_edge() const { return mclk_.last_at_or_before(scheduler_.now()); }
   std::int64_t tick_of(std::int64_t cycle_time) const { return cycle_time + 1 - base_; }
-  void prune();  // drops the planned_ entries of events that ran or were cancelled
+  // planned_ is full: drops the entries of events that ran or were cancelled, and makes
+  // room for as many again as are left.
+  void prune();
   void drop_future_events();
   void cancel_all();
   void begin(CycleKind kind, std::int64_t count);  // `count`: the counter now
@@ -156,7 +158,6 @@ class TimeBase : public ChipUnit {
   DividerTicks ticks_;        // the cycle counter's divider
   DividerTicks free_;         // the free-running divider
   std::vector<Planned> planned_;
-  std::size_t prune_at_ = 16;  // planned_ size at which track() drops stale entries
   struct CycleStartListener {
     CycleListener listener;
     void* context;
