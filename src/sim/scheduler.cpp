@@ -94,11 +94,13 @@ void Scheduler::SortedRun::insert(const Entry& entry) {
 }
 
 // Takes a pending event's entry out (it is there: live entries are never passed over).
-void Scheduler::SortedRun::remove(Time when, std::uint32_t slot) {
+// The live entry: a cancelled event's entry may still sit at the same time with the same
+// slot (reused since), told apart by its generation.
+void Scheduler::SortedRun::remove(Time when, std::uint32_t slot, std::uint32_t generation) {
   Entry* const last = buffer.data() + tail;
   Entry* at = std::lower_bound(buffer.data() + head, last, when,
                                [](const Entry& e, Time t) { return e.when < t; });
-  while (at->slot != slot) ++at;
+  while (at->slot != slot || at->generation != generation) ++at;
   std::copy(at + 1, last, at);
   --tail;
 }
@@ -138,7 +140,7 @@ bool Scheduler::move(EventId id, Time when) {
   if (live_slot(id) == nullptr) return false;
   const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
   Slot& slot = slots_[index];
-  (slot.when <= near_limit_ ? near_ : far_).remove(slot.when, index);
+  (slot.when <= near_limit_ ? near_ : far_).remove(slot.when, index, slot.generation);
   slot.when = when;
   insert(when, index, slot.generation);
   return true;

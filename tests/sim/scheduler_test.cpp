@@ -218,6 +218,24 @@ TEST(Scheduler, MovedEventKeepsItsIdAndGoesAfterThoseAtItsNewTime) {
   EXPECT_FALSE(s.move(moved, 200));
 }
 
+// The same rule when the moved event's slot last held a cancelled event of the same time:
+// the cancelled one's queue entry is still there, and must not be the one taken out (the
+// event ran at its old time and its id read as no longer pending). A chip gets there when
+// MCLKDIV is written while a cancelled and a new cycle-time event share their time.
+TEST(Scheduler, MovingAnEventInACancelledOnesSlotMovesThatEvent) {
+  Scheduler s;
+  Time ran = -1;
+  const auto cancelled = s.at(100, [] {});
+  s.cancel(cancelled);
+  const auto moved = s.at(100, [&] { ran = s.now(); });
+  EXPECT_TRUE(s.move(moved, 200));
+  s.run_until(150);
+  EXPECT_EQ(ran, -1);
+  EXPECT_EQ(s.when(moved), 200);
+  s.run_until(1000);
+  EXPECT_EQ(ran, 200);
+}
+
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
   EXPECT_EQ(period_of_hz(16'000'000), 62'500);  // 16 Mbit/s bit: 62.5 ns
   EXPECT_EQ(period_of_hz(64'000'000), 15'625);  // 64 MHz MCLK: 15.625 ns

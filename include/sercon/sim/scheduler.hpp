@@ -146,7 +146,7 @@ class Scheduler {
 
     bool empty() const { return head == tail; }
     void insert(const Entry& entry);
-    void remove(Time when, std::uint32_t slot);
+    void remove(Time when, std::uint32_t slot, std::uint32_t generation);
     void make_room();
   };
 
