@@ -51,7 +51,7 @@ void TelegramList::fault(const ListFault& f) {
 
 // Fills `item` in place (a ListItem returned by value was assembled on the stack and
 // reloaded whole: a store-forwarding stall per item).
-void TelegramList::read_item(std::uint16_t address, ListItem& item) {
+inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
   // Every item takes at least two words, so a walk reading more items than half the RAM
   // has looped.
   if (++items_read_ > ram_.size() / 2u) throw ListFault("list loops (no end marker reached)");
@@ -77,21 +77,20 @@ void TelegramList::read_item(std::uint16_t address, ListItem& item) {
   }
 }
 
+// Arms items until one waits for something; items already over are settled on the way.
+// A loop, not recursion: a long list of late items must not grow the stack. Each item is
+// read straight into item_ (what it holds matters only while an item is armed).
 void TelegramList::walk(std::uint16_t address) {
-  ListItem item;
-  read_item(address, item);
-  walk_from(item);
+  for (;;) {
+    read_item(address, item_);
+    if (arm(item_) || item_.kind == Kind::EndMarker) return;
+    address = item_.next;
+  }
 }
 
-// Arms items until one waits for something; items already over are settled on the way.
-// A loop, not recursion: a long list of late items must not grow the stack.
 void TelegramList::walk_from(const ListItem& first) {
   item_ = first;
-  ListItem next;
-  while (!arm(item_) && item_.kind != Kind::EndMarker) {
-    read_item(item_.next, next);
-    item_ = next;
-  }
+  if (!arm(item_) && item_.kind != Kind::EndMarker) walk(item_.next);
 }
 
 bool TelegramList::arm(const ListItem& item) {
