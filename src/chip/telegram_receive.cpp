@@ -75,42 +75,52 @@ ReceivePath::Outcome ReceivePath::finish(const ListItem& item, const wire::Decod
 sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
                              ServiceChannelPort& port) {
   const telegram::Storage storage = telegram::storage_of(item.word0);
+  // Double buffer: the data goes into the buffer VAL does not name.
+  const bool second_buffer = !storage.dma && storage.dbuf && !val;
   sim::Time work = 0;
-  dma_words_.clear();
+  if (storage.dma) dma_words_.clear();
   std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
   for (std::uint32_t n = 0;; ++n) {
     if (n >= ram_.size()) throw ListFault("receive containers without LASTDC");
     std::array<std::uint16_t, telegram::kReceiveContainerWords> head{};  // control, POS
     ram_.read_run(control, head);
-    const telegram::Container c = telegram::container_of(head[0]);
+    // The control word's fields tested in place (a Container would be built in memory).
+    const std::uint16_t len = telegram::container_len(head[0]);
     const std::uint16_t pos = head[1];
     const std::uint32_t data = control + telegram::kReceiveContainerWords;
     // The words of this container that arrived: POS .. POS + LEN of the telegram.
     const std::size_t first = std::min<std::size_t>(pos, arrived_words_);
-    const std::size_t last = std::min<std::size_t>(std::size_t{pos} + c.len, arrived_words_);
-    std::uint32_t buffer = data;
-    // Double buffer: the data goes into the buffer VAL does not name.
-    if (!storage.dma && storage.dbuf && !val) buffer += c.len;
-    if (!storage.dma && !c.svfl) {  // straight from the frame into the buffer
+    const std::size_t last = std::min<std::size_t>(std::size_t{pos} + len, arrived_words_);
+    const std::uint32_t buffer = second_buffer ? data + len : data;
+    if (!storage.dma && !telegram::container_svfl(head[0])) {  // straight into the buffer
       ram_.write_run_le(buffer, arrived_bytes_ + 2 * first, last - first);
     } else {
-      const std::span<const std::uint16_t> arrived = this->arrived(first, last);
-      if (storage.dma) {
-        dma_words_.insert(dma_words_.end(), arrived.begin(), arrived.end());
-      } else {
-        ram_.write_run(buffer, arrived);
-      }
-      if (c.svfl) {
-        const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
-                                      static_cast<std::uint16_t>(storage.dma ? 0 : buffer)};
-        work = std::max(work, port.after_receive(use, arrived, error_free));
-      }
+      work = std::max(work, store_through(storage.dma, head[0], control, buffer, first, last,
+                                          error_free, port));
     }
-    if (c.lastdc) break;
-    control = data + storage.buffer_words(c.len);
+    if (telegram::container_lastdc(head[0])) break;
+    control = data + storage.buffer_words(len);
   }
   if (storage.dma) dma_.receive(dma_words_);
   return work;
+}
+
+// A DMA or service container: its words as a run, into the DMA words or the buffer, and
+// handed to the service channel. Out of store()'s loop, which mostly takes plain buffers.
+sim::Time ReceivePath::store_through(bool dma, std::uint16_t control_word, std::uint32_t control,
+                                     std::uint32_t buffer, std::size_t first, std::size_t last,
+                                     bool error_free, ServiceChannelPort& port) {
+  const telegram::Container c = telegram::container_of(control_word);
+  const std::span<const std::uint16_t> arrived = this->arrived(first, last);
+  if (dma) {
+    dma_words_.insert(dma_words_.end(), arrived.begin(), arrived.end());
+  } else {
+    ram_.write_run(buffer, arrived);
+  }
+  if (!c.svfl) return 0;
+  const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
+                                static_cast<std::uint16_t>(dma ? 0 : buffer)};
+  return port.after_receive(use, arrived, error_free);
 }
 
 }  // namespace sercon::chip

@@ -17,6 +17,8 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
                                                    ServiceChannelPort& port) {
   static_assert(std::endian::native == std::endian::little);
   const telegram::Storage storage = telegram::storage_of(item.word0);
+  // With double buffering VAL names the buffer that goes out (datasheet 4.2.1).
+  const bool second_buffer = storage.dbuf && val;
   const std::size_t total = item.length;
   words_.resize(total);  // each word written below: by a container, or as 0 at the end
   std::size_t filled = 0;
@@ -24,41 +26,55 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
   // A container takes at least one word: more containers than RAM words is a loop.
   for (std::uint32_t n = 0;; ++n) {
     if (n >= ram_.size()) throw ListFault("transmit containers without LASTDC");
-    const telegram::Container c = telegram::container_of(ram_.read(control));
+    // The control word's fields tested in place (a Container would be built in memory).
+    const std::uint16_t control_word = ram_.read(control);
+    const std::uint16_t len = telegram::container_len(control_word);
     const std::uint32_t data = control + telegram::kTransmitContainerWords;
-    // A container that reaches beyond TLEN goes through a scratch buffer, cut to fit.
-    const bool fits = filled + c.len <= total;
-    std::span<std::uint16_t> words;
-    if (fits) {
-      words = std::span<std::uint16_t>(words_.data() + filled, c.len);
+    const std::uint32_t buffer = second_buffer ? data + len : data;
+    if (!storage.dma && !telegram::container_svfl(control_word) && filled + len <= total) {
+      ram_.read_run(buffer, std::span<std::uint16_t>(words_.data() + filled, len));
     } else {
-      container_.resize(c.len);
-      words = container_;
+      take(storage.dma, control_word, control, buffer, filled, port);
     }
-    // With double buffering VAL names the buffer that goes out (datasheet 4.2.1).
-    const std::uint32_t buffer = data + (storage.dbuf && val ? c.len : 0u);
-    if (storage.dma) {
-      dma_.transmit(words);
-    } else {
-      ram_.read_run(buffer, words);
-    }
-    if (c.svfl) {
-      const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
-                                    static_cast<std::uint16_t>(storage.dma ? 0 : buffer)};
-      port.before_transmit(use, words);
-    }
-    if (!fits) {
-      const std::size_t take = std::min<std::size_t>(c.len, total - std::min(filled, total));
-      std::copy_n(container_.begin(), take, words_.begin() + static_cast<std::ptrdiff_t>(filled));
-    }
-    filled += c.len;
-    if (c.lastdc) break;
-    control = data + storage.buffer_words(c.len);
+    filled += len;
+    if (telegram::container_lastdc(control_word)) break;
+    control = data + storage.buffer_words(len);
   }
   // Words the containers did not supply go out as 0.
   if (filled < total)
     std::fill(words_.begin() + static_cast<std::ptrdiff_t>(filled), words_.end(), 0);
   return {reinterpret_cast<const std::uint8_t*>(words_.data()), 2 * total};
+}
+
+// A DMA or service container, or one reaching beyond TLEN (through a scratch buffer, cut
+// to fit), into words_ from `filled` on. Out of gather()'s loop, which mostly takes plain
+// buffers.
+void TransmitPath::take(bool dma, std::uint16_t control_word, std::uint32_t control,
+                        std::uint32_t buffer, std::size_t filled, ServiceChannelPort& port) {
+  const telegram::Container c = telegram::container_of(control_word);
+  const std::size_t total = words_.size();
+  const bool fits = filled + c.len <= total;
+  std::span<std::uint16_t> words;
+  if (fits) {
+    words = std::span<std::uint16_t>(words_.data() + filled, c.len);
+  } else {
+    container_.resize(c.len);
+    words = container_;
+  }
+  if (dma) {
+    dma_.transmit(words);
+  } else {
+    ram_.read_run(buffer, words);
+  }
+  if (c.svfl) {
+    const ServiceContainerUse use{c.nsv, c.scmaster, static_cast<std::uint16_t>(control),
+                                  static_cast<std::uint16_t>(dma ? 0 : buffer)};
+    port.before_transmit(use, words);
+  }
+  if (!fits) {
+    const std::size_t take = std::min<std::size_t>(c.len, total - std::min(filled, total));
+    std::copy_n(container_.begin(), take, words_.begin() + static_cast<std::ptrdiff_t>(filled));
+  }
 }
 
 }  // namespace sercon::chip

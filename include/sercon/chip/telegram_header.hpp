@@ -101,6 +101,13 @@ constexpr Container container_of(std::uint16_t control) {
   return c;
 }
 
+// Single fields of a control word, for loops that test them in place.
+constexpr std::uint16_t container_len(std::uint16_t control) {
+  return static_cast<std::uint16_t>(control & 0x03FF);
+}
+constexpr bool container_svfl(std::uint16_t control) { return (control & (1u << 10)) != 0; }
+constexpr bool container_lastdc(std::uint16_t control) { return (control & (1u << 15)) != 0; }
+
 // Control words in front of a container's data: receive containers carry POS as well.
 inline constexpr std::uint16_t kReceiveContainerWords = 2;
 inline constexpr std::uint16_t kTransmitContainerWords = 1;

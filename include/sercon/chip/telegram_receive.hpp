@@ -41,6 +41,9 @@ class ReceivePath {
   void take_words(const wire::DecodedFrame& frame);
   std::span<const std::uint16_t> arrived(std::size_t first, std::size_t last);
   sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
+  sim::Time store_through(bool dma, std::uint16_t control_word, std::uint32_t control,
+                          std::uint32_t buffer, std::size_t first, std::size_t last,
+                          bool error_free, ServiceChannelPort& port);
 
   TelegramRam& ram_;
   DmaPort& dma_;

@@ -29,6 +29,9 @@ class TransmitPath {
   std::span<const std::uint8_t> gather(const ListItem& item, bool val, ServiceChannelPort& port);
 
  private:
+  void take(bool dma, std::uint16_t control_word, std::uint32_t control, std::uint32_t buffer,
+            std::size_t filled, ServiceChannelPort& port);
+
   TelegramRam& ram_;
   DmaPort& dma_;
   std::vector<std::uint16_t> words_;      // the telegram's words, TLEN of them
