@@ -70,15 +70,6 @@ void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
   port_ = port != nullptr ? port : &pass_through_;
 }
 
-std::uint8_t TelegramProcessor::phase() const {
-  return static_cast<std::uint8_t>((master() ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
-}
-
-// Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it. The chip
-// tells phases apart only as 0..2 and 3..7 (COMPT0/1, TSCYC0/1), and a drive must not send
-// at all in CP0 (facts §2), so the gate holds in phase 0 too (docs/telegram-processing.md).
-bool TelegramProcessor::address_flag_phase() const { return !master() && phase() <= 2; }
-
 // --- cycles -----------------------------------------------------------------------------
 
 void TelegramProcessor::on_cycle_start(const CycleStart& start) {
@@ -191,16 +182,18 @@ void TelegramProcessor::finish_receive(const wire::DecodedFrame& frame) {
   }
   interrupts_.raise(Irq::Rend);
   if (outcome.error) interrupts_.raise(Irq::Rerr);
-  after_service_work(outcome.service_work);
+  // Delta spec 2.10.2: INT_RSCEND once the service-container work after a receive telegram
+  // is done (at once when there is none, unless earlier work is still going on).
+  if (outcome.service_work > 0) {
+    after_service_work(outcome.service_work);
+  } else if (!scheduler_.pending(rscend_event_)) {
+    interrupts_.raise(Irq::Rscend);
+  }
 }
 
-// Delta spec 2.10.2: INT_RSCEND once the service-container work after a receive telegram is
-// done (at once when there is none). Overlapping work ends with the later of the two.
+// Service-container work lasting `work` from now: overlapping work ends with the later of
+// the two.
 void TelegramProcessor::after_service_work(sim::Time work) {
-  if (work <= 0) {
-    if (!scheduler_.pending(rscend_event_)) interrupts_.raise(Irq::Rscend);
-    return;
-  }
   const sim::Time at = scheduler_.now() + work;
   if (scheduler_.pending(rscend_event_)) {
     if (at <= rscend_at_) return;

@@ -55,8 +55,15 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   };
 
   bool master() const { return regmode_.on(regs_); }
-  std::uint8_t phase() const;
-  bool address_flag_phase() const;  // slave in CP0..2: FLMDTADR gates the ATs
+  std::uint8_t phase() const {
+    return static_cast<std::uint8_t>((master() ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
+  }
+  // Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it. The
+  // chip tells phases apart only as 0..2 and 3..7 (COMPT0/1, TSCYC0/1), and a drive must not
+  // send at all in CP0 (facts §2), so the gate holds in phase 0 too
+  // (docs/telegram-processing.md). A slave in CP0..2: FLMDTADR gates the ATs. Both inline:
+  // asked at every telegram start and list transmission.
+  bool address_flag_phase() const { return !master() && phase() <= 2; }
   ServiceChannelPort& port() { return *port_; }
 
   void on_cycle_start(const CycleStart& start);
