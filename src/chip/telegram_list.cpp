@@ -13,13 +13,6 @@ TelegramList::TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& cl
 // own events); the scheduler outlives every chip.
 TelegramList::~TelegramList() { scheduler_.cancel(window_judge_); }
 
-void TelegramList::cancel_event() {
-  if (event_ != 0) time_base_.cancel(event_);
-  event_ = 0;
-  scheduler_.cancel(window_judge_);
-  window_judge_ = {};
-}
-
 void TelegramList::stop() {
   cancel_event();
   state_ = State::Idle;

@@ -10,14 +10,6 @@ namespace sercon::chip {
 using telegram::kRerr;
 using telegram::kVal;
 
-bool ReceivePath::begin(const ListItem& item) {
-  const telegram::Storage storage = telegram::storage_of(item.word0);
-  if (storage.dbuf && !storage.dma) return false;
-  const std::uint16_t word0 = ram_.read(item.address);
-  ram_.write(item.address, static_cast<std::uint16_t>(word0 & ~kVal));
-  return (word0 & kVal) != 0;
-}
-
 void ReceivePath::withdraw(const ListItem& item, bool cleared) {
   if (!cleared) return;
   ram_.write(item.address, static_cast<std::uint16_t>(ram_.read(item.address) | kVal));

@@ -107,7 +107,12 @@ class TelegramList {
   void fire_transmit();
   void close_window();
   void fire_end();
-  void cancel_event();
+  void cancel_event() {
+    if (event_ != 0) time_base_.cancel(event_);
+    event_ = 0;
+    scheduler_.cancel(window_judge_);
+    window_judge_ = {};
+  }
   void fault(const ListFault& fault);
 
   TimeBase& time_base_;

@@ -71,9 +71,11 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   void on_telegram_start(sim::Time start, std::uint8_t address);
   void on_telegram(const ReceivedTelegram& telegram);
   void on_mst(const wire::DecodedFrame& frame, sim::Time recognised);
-  void offer(sim::Time start, std::uint8_t address);
+  // offer() and finish_receive() are inline (defined in the .cpp, each called once there):
+  // a telegram's start and its detection are one call each from the serial unit.
+  inline void offer(sim::Time start, std::uint8_t address);
   void withdraw_mst();
-  void finish_receive(const wire::DecodedFrame& frame);
+  inline void finish_receive(const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
   // Scheduler actions (function + context: no std::function per telegram).
   static void transmission_ended(void* processor);

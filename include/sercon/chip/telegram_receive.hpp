@@ -28,8 +28,14 @@ class ReceivePath {
   ReceivePath(TelegramRam& ram, DmaPort& dma) : ram_(ram), dma_(dma) {}
 
   // The telegram begins (its address is in): single buffer and DMA data become invalid.
-  // Returns whether it cleared VAL.
-  bool begin(const ListItem& item);
+  // Returns whether it cleared VAL. Inline: at every telegram a header takes.
+  bool begin(const ListItem& item) {
+    const telegram::Storage storage = telegram::storage_of(item.word0);
+    if (storage.dbuf && !storage.dma) return false;
+    const std::uint16_t word0 = ram_.read(item.address);
+    ram_.write(item.address, static_cast<std::uint16_t>(word0 & ~telegram::kVal));
+    return (word0 & telegram::kVal) != 0;
+  }
   // The telegram proved to be an MST: VAL back as before begin().
   void withdraw(const ListItem& item, bool cleared);
   // The telegram has been detected (ended, or cut off by an error).
@@ -40,7 +46,8 @@ class ReceivePath {
  private:
   void take_words(const wire::DecodedFrame& frame);
   std::span<const std::uint16_t> arrived(std::size_t first, std::size_t last);
-  sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
+  // Inline (defined in the .cpp, called once there): finish() and store() are one function.
+  inline sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
   sim::Time store_through(bool dma, std::uint16_t control_word, std::uint32_t control,
                           std::uint32_t buffer, std::size_t first, std::size_t last,
                           bool error_free, ServiceChannelPort& port);
