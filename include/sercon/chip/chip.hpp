@@ -112,34 +112,44 @@ class Chip {
   }
   // Words the telegram processor has read or written since the chip was built (a measure
   // of its work: statistics, and the fuzzer's work budget).
-  std::uint64_t tp_ram_accesses() const { return tp_ram_accesses_; }
+  std::uint64_t tp_ram_accesses() const {
+    std::uint64_t n = tp_ram_accesses_;
+    for (const TpRamPort* port : tp_ports_) n += port->accesses_;
+    return n;
+  }
 
   // The same port without the bounds checks, for a caller that checks every word itself
   // (TelegramRam: one check per access instead of one per layer): each word given must be
   // < size(). Reads, writes, BUSYN marks and the access count are those of tp_ram_read /
-  // tp_ram_write. Valid as long as the chip.
+  // tp_ram_write. Valid as long as the chip. Neither copied nor moved: the port counts its
+  // accesses itself (one add each, not through a pointer into the chip) and the chip adds
+  // them up in tp_ram_accesses().
   class TpRamPort {
    public:
+    TpRamPort(const TpRamPort&) = delete;
+    TpRamPort& operator=(const TpRamPort&) = delete;
+    ~TpRamPort() { std::erase(chip_->tp_ports_, this); }
+
     std::uint16_t size() const { return size_; }
     std::uint16_t read(std::uint16_t word) const {
       marks_.mark(word);
-      ++*accesses_;
+      ++accesses_;
       return words_[word];
     }
     void write(std::uint16_t word, std::uint16_t value) const {
       words_[word] = value;
       marks_.mark(word);
-      ++*accesses_;
+      ++accesses_;
     }
     void read_run(std::uint16_t first, std::span<std::uint16_t> out) const {
       const std::uint16_t* from = words_ + first;
       marks_.mark_run(first, out.size(), [&](std::size_t i) { out[i] = from[i]; });
-      *accesses_ += out.size();
+      accesses_ += out.size();
     }
     void write_run(std::uint16_t first, std::span<const std::uint16_t> words) const {
       std::uint16_t* to = words_ + first;
       marks_.mark_run(first, words.size(), [&](std::size_t i) { to[i] = words[i]; });
-      *accesses_ += words.size();
+      accesses_ += words.size();
     }
     // write_run of `count` words given as little-endian byte pairs (a telegram's data as
     // it came off the line).
@@ -147,22 +157,26 @@ class Chip {
       static_assert(std::endian::native == std::endian::little);
       std::uint16_t* to = words_ + first;
       marks_.mark_run(first, count, [&](std::size_t i) { std::memcpy(to + i, bytes + 2 * i, 2); });
-      *accesses_ += count;
+      accesses_ += count;
     }
 
    private:
     friend class Chip;
-    TpRamPort(Chip& chip)
+    explicit TpRamPort(Chip& chip)
         : words_(chip.ram_.unchecked_words()),
           marks_(chip.busy_.marks()),
-          accesses_(&chip.tp_ram_accesses_),
-          size_(chip.ram_.size()) {}
+          chip_(&chip),
+          size_(chip.ram_.size()) {
+      chip.tp_ports_.push_back(this);
+    }
 
     std::uint16_t* words_;
     BusyArbiter::Marks marks_;
-    std::uint64_t* accesses_;
+    Chip* chip_;
     std::uint16_t size_;
+    mutable std::uint64_t accesses_ = 0;
   };
+  // Built in place where it is kept (a prvalue: no copy).
   TpRamPort tp_ram_port() { return TpRamPort(*this); }
 
   // --- pins -----------------------------------------------------------------------------
@@ -237,7 +251,8 @@ class Chip {
   std::vector<sim::Level> output_levels_;  // what each output drives when OUTZ = 0
   std::vector<bool> chip_drives_;          // InOut lines the chip drives now
   BusyArbiter busy_;
-  std::uint64_t tp_ram_accesses_ = 0;
+  std::uint64_t tp_ram_accesses_ = 0;       // tp_ram_read / tp_ram_write and their runs
+  std::vector<const TpRamPort*> tp_ports_;  // each counts its own accesses
   bool rstn_low_ = false;
   bool outz_ = false;
   ResetCause last_reset_ = ResetCause::PowerOn;
