@@ -91,22 +91,22 @@ struct Container {
   bool lastdc = false;    // last container of the telegram
 };
 
-constexpr Container container_of(std::uint16_t control) {
-  Container c;
-  c.len = static_cast<std::uint16_t>(control & 0x03FF);
-  c.svfl = (control & (1u << 10)) != 0;
-  c.nsv = static_cast<std::uint8_t>((control >> 11) & 0x7);
-  c.scmaster = (control & (1u << 14)) != 0;
-  c.lastdc = (control & (1u << 15)) != 0;
-  return c;
-}
-
 // Single fields of a control word, for loops that test them in place.
 constexpr std::uint16_t container_len(std::uint16_t control) {
   return static_cast<std::uint16_t>(control & 0x03FF);
 }
 constexpr bool container_svfl(std::uint16_t control) { return (control & (1u << 10)) != 0; }
 constexpr bool container_lastdc(std::uint16_t control) { return (control & (1u << 15)) != 0; }
+
+constexpr Container container_of(std::uint16_t control) {
+  Container c;
+  c.len = container_len(control);
+  c.svfl = container_svfl(control);
+  c.nsv = static_cast<std::uint8_t>((control >> 11) & 0x7);
+  c.scmaster = (control & (1u << 14)) != 0;
+  c.lastdc = container_lastdc(control);
+  return c;
+}
 
 // Control words in front of a container's data: receive containers carry POS as well.
 inline constexpr std::uint16_t kReceiveContainerWords = 2;
