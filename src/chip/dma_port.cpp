@@ -26,6 +26,7 @@ void DmaPort::reset(ResetCause) {
   rx_word_open_ = false;
   tx_partial_ = 0;
   tx_writing_ = false;
+  write_acknowledged_ = false;  // a write the reset cut short moves nothing when it ends
   refresh();
 }
 
@@ -111,6 +112,7 @@ void DmaPort::end_write(bool completes, std::uint16_t bits, std::uint16_t mask) 
 
 std::uint16_t DmaPort::acknowledge_read() {
   std::uint16_t word = 0xFFFF;
+  if (chip_.in_reset()) return word;  // held in reset: nothing answers, the bus floats
   if (!chip_.input_high(Pin::BUSWIDTH)) {
     std::uint16_t first = 0;
     read_word(false, first);  // A0 = 0
@@ -119,6 +121,7 @@ std::uint16_t DmaPort::acknowledge_read() {
 }
 
 void DmaPort::acknowledge_write(std::uint16_t word) {
+  if (chip_.in_reset()) return;
   if (!chip_.input_high(Pin::BUSWIDTH)) {
     const ByteLanes low = lanes(0);
     begin_write(false);
@@ -152,12 +155,17 @@ unsigned DmaPort::address_a0() const {
   return chip_.input_high(Pin::A0) ? 1u : 0u;
 }
 
+// Held in reset (RSTN = 0, OUTZ = 1) the port starts no access: like the registers it is
+// held, so a DMA controller cycling on meets no FIFO, drives nothing and latches no
+// INT_DMAERR (docs/chip.md "Resets"). Ends are still followed, so a read begun before the
+// reset releases D15-0.
 void DmaPort::on_strobe_pin() {
   const BusStrobes now = strobes();
   if (active_.read && !now.read) read_ends();
   if (active_.write && !now.write) write_ends();
-  const bool read_starts_now = !active_.read && now.read;
-  const bool write_starts_now = !active_.write && now.write;
+  const bool held = chip_.in_reset();
+  const bool read_starts_now = !held && !active_.read && now.read;
+  const bool write_starts_now = !held && !active_.write && now.write;
   active_ = now;
   if (read_starts_now) read_starts();
   if (write_starts_now) write_starts();

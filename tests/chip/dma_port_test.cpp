@@ -1,0 +1,85 @@
+// The DMA port on its pins (datasheet Table 1 DMAREQR / DMAACKRN / DMAREQT / DMAACKTN,
+// 3.5.1 t_MCLD; docs/chip.md "Resets"; docs/telegram-processing.md "DMA"): a chip on the
+// timing bench, no ring; the test plays the DMA controller. Transfers through telegrams
+// are in telegram_dma_test.cpp.
+#include <gtest/gtest.h>
+
+#include "sercon/chip/dma_port.hpp"
+#include "timing_bench.hpp"
+
+namespace sercon::chip {
+namespace {
+
+using namespace testing;
+
+constexpr Time kStrobe = 50'000;  // 50 ns
+// DMACTRL (0x0C): DMARXEN bit 0, DMATXEN bit 1 (docs/registers.md).
+constexpr std::uint16_t kDmaTxEn = 0x0002;
+
+struct DmaPins : TimingBench {
+  void run_for(Time t) { run_to(now() + t); }
+  // One DMA controller write cycle on the pins (Intel bus: WRN strobe, DMAACKTN = 0).
+  void dma_write(std::uint16_t word) {
+    for (unsigned bit = 0; bit < 16; ++bit) {
+      chip.drive(data_pin(bit), sim::level_of(((unsigned{word} >> bit) & 1u) != 0));
+    }
+    chip.drive(Pin::DMAACKTN, Level::Low);
+    chip.drive(Pin::WRN, Level::Low);
+    run_for(kStrobe);
+    chip.drive(Pin::WRN, Level::High);
+    chip.drive(Pin::DMAACKTN, Level::High);
+    for (unsigned bit = 0; bit < 16; ++bit) chip.drive(data_pin(bit), Level::HighZ);
+    run_for(kStrobe);
+  }
+  // One DMA controller read cycle on the pins (Intel bus: RDN strobe, DMAACKRN = 0).
+  void dma_read() {
+    chip.drive(Pin::DMAACKRN, Level::Low);
+    chip.drive(Pin::RDN, Level::Low);
+    run_for(kStrobe);
+    chip.drive(Pin::RDN, Level::High);
+    chip.drive(Pin::DMAACKRN, Level::High);
+    run_for(kStrobe);
+  }
+};
+
+// docs/chip.md "Resets": while RSTN = 0 or OUTZ = 1 "the registers are held: writes are
+// ignored and reads give reset values", and every reset loads the reset values (INTSTAT
+// 0x0000, docs/registers.md). A DMA controller that is still cycling while the host holds
+// the chip in reset must not leave a latched INT_DMAERR behind: the DMA port ignores
+// acknowledged strobes in reset (its FIFOs are reset and disabled, and nothing may latch).
+TEST(DmaPort, StrobesWhileHeldInResetLatchNoInterrupt) {
+  for (const Pin reset_pin : {Pin::RSTN, Pin::OUTZ}) {
+    // 0: no strobe (the control case: the reset alone leaves INTSTAT clear), 1: a write,
+    // 2: a read.
+    for (const int strobe : {0, 1, 2}) {
+      DmaPins b;
+      const Level active = reset_pin == Pin::RSTN ? Level::Low : Level::High;
+      const Level inactive = reset_pin == Pin::RSTN ? Level::High : Level::Low;
+      b.run_to(kMicrosecond);
+      b.chip.drive(reset_pin, active);
+      b.run_for(kMicrosecond);
+      if (strobe == 1) b.dma_write(0x1234);
+      if (strobe == 2) b.dma_read();
+      b.chip.drive(reset_pin, inactive);
+      b.run_for(kMicrosecond);
+      EXPECT_EQ(b.chip.reg_read(kIntStat) & kIntDmaerr, 0)
+          << (reset_pin == Pin::RSTN ? "RSTN = 0" : "OUTZ = 1") << ", strobe " << strobe;
+    }
+  }
+}
+
+// The same for the word API's whole DMA cycles: in reset a read finds nothing to answer it
+// (the floating bus, 0xFFFF) and a write goes nowhere; neither counts or latches anything.
+TEST(DmaPort, WholeCyclesWhileHeldInResetDoNothing) {
+  DmaPins b;
+  DmaPort& port = *b.chip.unit<DmaPort>();
+  b.chip.drive(Pin::RSTN, Level::Low);
+  port.acknowledge_write(0x1234);
+  EXPECT_EQ(port.acknowledge_read(), 0xFFFF);
+  EXPECT_EQ(port.transmit_count(), 0u);
+  b.chip.drive(Pin::RSTN, Level::High);
+  EXPECT_EQ(b.chip.reg_read(kIntStat) & kIntDmaerr, 0);
+}
+
+}  // namespace
+}  // namespace sercon::chip
