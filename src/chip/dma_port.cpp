@@ -12,7 +12,8 @@ DmaPort::DmaPort(Chip& chip)
       rx_enable_(field_ref("DMARXEN", chip.variant())),
       tx_enable_(field_ref("DMATXEN", chip.variant())),
       rx_count_(field_ref("RXCNT", chip.variant())),
-      tx_count_(field_ref("TXCNT", chip.variant())) {
+      tx_count_(field_ref("TXCNT", chip.variant())),
+      request_edge_(chip.scheduler(), chip.mclk(), [this] { drive_requests(); }) {
   for (Pin p : {Pin::RDN, Pin::WRN, Pin::BUSMODE0, Pin::BUSMODE1}) {
     chip_.pin(p).watch([this](sim::Level) { on_strobe_pin(); });
   }
@@ -27,6 +28,9 @@ void DmaPort::reset(ResetCause) {
   tx_partial_ = 0;
   tx_writing_ = false;
   write_acknowledged_ = false;  // a write the reset cut short moves nothing when it ends
+  // The chip has set DMAREQR/T inactive already: a reset does not wait for MCLK.
+  request_edge_.cancel();
+  reqr_out_ = reqt_out_ = false;
   refresh();
 }
 
@@ -44,15 +48,47 @@ void DmaPort::on_control_write(std::uint16_t before) {
   refresh();
 }
 
-void DmaPort::refresh() {
+void DmaPort::refresh(Change change) {
   rx_count_.put(regs_, static_cast<std::uint16_t>(rx_.size()));
   tx_count_.put(regs_, static_cast<std::uint16_t>(tx_.size()));
   // A word whose read has begun no longer counts as readable; a word whose write has begun
   // already counts as written (Table 1: both requests drop at the beginning of the access).
   const std::size_t readable = rx_.size() - (rx_word_open_ && !rx_.empty() ? 1 : 0);
   const std::size_t claimed = tx_.size() + (tx_writing_ ? 1 : 0);
-  chip_.set_output(Pin::DMAREQR, rx_enabled() && readable > 0);
-  chip_.set_output(Pin::DMAREQT, tx_enabled() && claimed < kDepth);
+  reqr_ = rx_enabled() && readable > 0;
+  reqt_ = tx_enabled() && claimed < kDepth;
+  // Datasheet 3.5.6 t_PRQ: the drop at the beginning of an access follows the strobe.
+  if (change == Change::AccessBegins) {
+    if (reqr_out_ && !reqr_) {
+      reqr_out_ = false;
+      chip_.set_output(Pin::DMAREQR, false);
+    }
+    if (reqt_out_ && !reqt_) {
+      reqt_out_ = false;
+      chip_.set_output(Pin::DMAREQT, false);
+    }
+  }
+  if (reqr_ == reqr_out_ && reqt_ == reqt_out_) return;
+  // Every other change comes with a rising MCLK edge (3.5.1 t_MCLD): the first at or after
+  // now. The pins then take the state of that instant.
+  const Edge edge = chip_.mclk().first_at_or_after(chip_.scheduler().now());
+  if (chip_.mclk().time_of(edge) == chip_.scheduler().now()) {
+    request_edge_.cancel();
+    drive_requests();
+  } else if (!request_edge_.pending()) {
+    request_edge_.at_edge(edge);
+  }
+}
+
+void DmaPort::drive_requests() {
+  if (reqr_out_ != reqr_) {
+    reqr_out_ = reqr_;
+    chip_.set_output(Pin::DMAREQR, reqr_);
+  }
+  if (reqt_out_ != reqt_) {
+    reqt_out_ = reqt_;
+    chip_.set_output(Pin::DMAREQT, reqt_);
+  }
 }
 
 // --- telegram processor's side ----------------------------------------------------------
@@ -82,7 +118,7 @@ bool DmaPort::read_word(bool completes, std::uint16_t& word) {
   if (!rx_enabled() || rx_.empty()) {
     interrupts_.raise(Irq::DmaErr);
     rx_word_open_ = false;
-    refresh();
+    refresh(Change::AccessBegins);
     return false;
   }
   if (completes) {
@@ -92,14 +128,14 @@ bool DmaPort::read_word(bool completes, std::uint16_t& word) {
     word = rx_.front();
     rx_word_open_ = true;
   }
-  refresh();
+  refresh(Change::AccessBegins);
   return true;
 }
 
 void DmaPort::begin_write(bool completes) {
   if (!completes) return;
   tx_writing_ = true;
-  refresh();
+  refresh(Change::AccessBegins);
 }
 
 void DmaPort::end_write(bool completes, std::uint16_t bits, std::uint16_t mask) {

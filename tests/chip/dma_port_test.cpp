@@ -81,5 +81,52 @@ TEST(DmaPort, WholeCyclesWhileHeldInResetDoNothing) {
   EXPECT_EQ(b.chip.reg_read(kIntStat) & kIntDmaerr, 0);
 }
 
+// Datasheet 3.5.1, t_MCLD: "Output delay rising edge MCLK to DMAREQR/T, CON_CLK, DIV_CLK",
+// max 20 ns. DMAREQT is an MCLK-clocked output: every change that is not the strobe-driven
+// fall of t_PRQ (3.5.6) must come at most 20 ns after a rising MCLK edge (the model adds no
+// output delay, so at the edge itself). Enabling the transmit FIFO (DMACTRL.DMATXEN, a
+// project register) by a bus write 25 ns after an MCLK edge (32 MHz: 31.25 ns period) must
+// raise DMAREQT at the next edge, not at the write instant.
+TEST(DmaPort, DmareqtRisesWithinTmcldOfAnMclkEdge) {
+  DmaPins b;
+  PinLog reqt(b.bench.scheduler, b.pin(Pin::DMAREQT));
+  const Time t_mcld = 20'000;
+  const Time written = 320 * b.mclk() + 25'000;  // 25 ns after MCLK edge 320
+  b.write_at(written, kDmaCtrl, kDmaTxEn);
+  b.run_for(kMicrosecond);
+  ASSERT_EQ(reqt.times_of(Level::High).size(), 1u);
+  const Time rise = reqt.times_of(Level::High).front();
+  const Time since_edge = rise % b.mclk();  // MCLK edges at k * period (docs/timing.md)
+  EXPECT_GE(rise, written);
+  EXPECT_LE(since_edge, t_mcld) << "DMAREQT rose at " << rise << " ps, " << since_edge
+                                << " ps after the last rising MCLK edge";
+}
+
+// Decision (docs/telegram-processing.md "DMA"): a DMACTRL write acts on the FIFOs and on
+// RXCNT / TXCNT at once, so a host reading the register right after its write sees the
+// FIFO state it made; DMAREQR/T, MCLK-clocked outputs, follow that state at the next MCLK
+// edge, a rise (enable) as a drop (disable, which also empties the FIFO).
+TEST(DmaPort, ControlWritesActAtOnceAndTheRequestsFollowAtTheNextMclkEdge) {
+  DmaPins b;
+  const Time written = 320 * b.mclk() + 25'000;
+  const Time edge = 321 * b.mclk();
+  b.write_at(written, kDmaCtrl, kDmaTxEn);
+  EXPECT_EQ(b.chip.reg_read(kDmaCtrl), kDmaTxEn);  // enabled, TXCNT = 0
+  EXPECT_EQ(b.pin(Pin::DMAREQT).level(), Level::Low);
+  b.run_to(edge - 1);
+  EXPECT_EQ(b.pin(Pin::DMAREQT).level(), Level::Low);
+  b.run_to(edge);
+  EXPECT_EQ(b.pin(Pin::DMAREQT).level(), Level::High);
+  b.dma_write(0x1234);
+  EXPECT_EQ(b.chip.reg_read(kDmaCtrl), kDmaTxEn | 1u << 2);  // TXCNT = 1
+  const Time disabled = b.now() + 10'000;
+  ASSERT_NE(disabled % b.mclk(), 0);
+  b.write_at(disabled, kDmaCtrl, 0);
+  EXPECT_EQ(b.chip.reg_read(kDmaCtrl), 0);  // emptied: TXCNT = 0
+  EXPECT_EQ(b.pin(Pin::DMAREQT).level(), Level::High);
+  b.run_to(edge_at_or_after(disabled, b.mclk()));
+  EXPECT_EQ(b.pin(Pin::DMAREQT).level(), Level::Low);
+}
+
 }  // namespace
 }  // namespace sercon::chip

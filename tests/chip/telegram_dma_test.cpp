@@ -233,7 +233,9 @@ TEST_F(Dma, ClearingTheEnableEmptiesTheFifo) {
   ring.run_for(kTscyc * sim::kMicrosecond);
   EXPECT_TRUE(high(Pin::DMAREQR));
   chip().reg_write(kDmaCtrl, 0);
-  EXPECT_EQ(chip().reg_read(kDmaCtrl), 0);
+  EXPECT_EQ(chip().reg_read(kDmaCtrl), 0);  // FIFOs and counts at once
+  // The requests at the next MCLK edge (datasheet 3.5.1 t_MCLD; dma_port_test.cpp).
+  ring.scheduler.run_until(ceil_to(now(), t.mclk()));
   EXPECT_FALSE(high(Pin::DMAREQR));
   EXPECT_FALSE(high(Pin::DMAREQT));
 }

@@ -8,6 +8,9 @@
 //  - transmit: DMAREQT is high while a word can be written and goes low at the beginning of
 //    the write that fills the FIFO; a write with DMAACKTN = 0 enters the FIFO; a transmit
 //    telegram with DMA = 1 takes its container words from the FIFO at its start.
+// DMAREQR/T are MCLK-clocked (datasheet 3.5.1 t_MCLD): a change takes effect at the first
+// MCLK edge at or after its cause, except the drop at the beginning of an access, which
+// follows the strobe (3.5.6 t_PRQ). The FIFOs and RXCNT / TXCNT change at once.
 // Overrun (a word that finds the FIFO full or disabled) and underrun (a word wanted from an
 // empty or disabled FIFO) raise INT_DMAERR. DMACTRL (0x0C): DMARXEN / DMATXEN enable (0
 // also empties the FIFO), RXCNT / TXCNT count the words held.
@@ -23,6 +26,7 @@
 #include "sercon/chip/dma_fifo.hpp"
 #include "sercon/chip/field_ref.hpp"
 #include "sercon/chip/interrupts.hpp"
+#include "sercon/chip/tick_alarm.hpp"
 
 namespace sercon::chip {
 
@@ -70,7 +74,12 @@ class DmaPort : public ChipUnit {
   bool rx_enabled() const { return rx_enable_.on(regs_); }
   bool tx_enabled() const { return tx_enable_.on(regs_); }
   void on_control_write(std::uint16_t before);
-  void refresh();
+  // What caused the FIFO state to change: the beginning of an access (its request drop
+  // follows the strobe) or anything else (the requests follow at an MCLK edge).
+  enum class Change : std::uint8_t { Clocked, AccessBegins };
+  // RXCNT / TXCNT now; DMAREQR/T as `change` says.
+  void refresh(Change change = Change::Clocked);
+  void drive_requests();  // the pins take reqr_ / reqt_
 
   Chip& chip_;
   RegisterFile& regs_;
@@ -84,6 +93,10 @@ class DmaPort : public ChipUnit {
   bool tx_writing_ = false;          // a write that moves a word has begun
   bool write_acknowledged_ = false;  // DMAACKTN was 0 when the write strobe began
   std::uint16_t driven_ = 0;         // data lines driven for a DMA read in progress
+
+  bool reqr_ = false, reqt_ = false;          // the requests the FIFO state asks for
+  bool reqr_out_ = false, reqt_out_ = false;  // the levels on DMAREQR / DMAREQT
+  TickAlarm request_edge_;                    // the MCLK edge that drives them
 };
 
 }  // namespace sercon::chip
