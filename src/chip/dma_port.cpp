@@ -159,10 +159,10 @@ std::uint16_t DmaPort::acknowledge_read() {
 void DmaPort::acknowledge_write(std::uint16_t word) {
   if (chip_.in_reset()) return;
   if (!chip_.input_high(Pin::BUSWIDTH)) {
-    const ByteLanes low = lanes(0);
+    const ByteLanes low = lanes(false, 0);
     begin_write(false);
     end_write(false, word, low.word_mask());
-    const ByteLanes high = lanes(1);
+    const ByteLanes high = lanes(false, 1);
     begin_write(true);
     end_write(true, word, high.word_mask());
     return;
@@ -179,8 +179,12 @@ BusStrobes DmaPort::strobes() const {
                         chip_.input_high(Pin::BUSMODE0), chip_.input_high(Pin::BUSMODE1));
 }
 
-ByteLanes DmaPort::lanes(unsigned a0) const {
-  return byte_lanes(false, chip_.input_high(Pin::BYTEDIR), static_cast<std::uint16_t>(a0), false);
+// The lanes of a RAM access: a 16-bit DMA access is a whole-word access (A0 = 0,
+// BHEN = 0), so BYTEDIR = 1 byte-swaps it on D15-0 as it does a RAM word (docs/chip.md
+// "Byte lanes").
+ByteLanes DmaPort::lanes(bool bus16, unsigned a0) const {
+  return byte_lanes(bus16, chip_.input_high(Pin::BYTEDIR),
+                    static_cast<std::uint16_t>(bus16 ? 0u : a0), false);
 }
 
 unsigned DmaPort::address_a0() const {
@@ -213,7 +217,7 @@ void DmaPort::read_starts() {
   const unsigned a0 = bus16 ? 1u : address_a0();
   std::uint16_t word = 0;
   if (!read_word(a0 == 1, word)) return;  // underrun: D15-0 float
-  const ByteLanes l = bus16 ? ByteLanes{true, true, false, true} : lanes(a0);
+  const ByteLanes l = lanes(bus16, a0);
   driven_ = l.data_mask();
   const std::uint16_t data = l.to_data(word);
   for (unsigned bit = 0; bit < 16; ++bit) {
@@ -250,12 +254,9 @@ void DmaPort::write_ends() {
   for (unsigned bit = 0; bit < 16; ++bit) {
     if (chip_.input_high(data_pin(bit))) data = static_cast<std::uint16_t>(data | 1u << bit);
   }
-  if (chip_.input_high(Pin::BUSWIDTH)) {
-    end_write(true, data, 0xFFFF);
-    return;
-  }
-  const unsigned a0 = address_a0();
-  const ByteLanes l = lanes(a0);
+  const bool bus16 = chip_.input_high(Pin::BUSWIDTH);
+  const unsigned a0 = bus16 ? 1u : address_a0();
+  const ByteLanes l = lanes(bus16, a0);
   end_write(a0 == 1, l.to_word(data), l.word_mask());
 }
 

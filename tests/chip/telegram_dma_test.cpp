@@ -4,6 +4,7 @@
 // the pins.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <vector>
 
 #include "sercon/chip/dma_port.hpp"
@@ -34,14 +35,15 @@ class Dma : public ::testing::Test {
   }
 
   // The list: transmit header `tx` (3 words from RAM, or a 3-word DMA container), receive
-  // header `rx` (3 words), end marker.
-  void start(std::uint16_t tx, std::uint16_t rx) {
+  // header `rx` (3 words), end marker. The RAM container at 0x044 holds `data`.
+  void start(std::uint16_t tx, std::uint16_t rx,
+             std::array<std::uint16_t, 3> data = {0x1111, 0x2222, 0x3333}) {
     t = timing_16mbit();
     Chip& m = chip();
     program_master(m, t, kTscyc, 4);
     words(m, 0x000, {0x060, 0x040});
     transmit_header(m, 0x040, tx, 20, 3, kRxHeader);
-    words(m, 0x044, {0x8003, 0x1111, 0x2222, 0x3333});
+    words(m, 0x044, {0x8003, data[0], data[1], data[2]});
     receive_header(m, kRxHeader, rx, 0, 3, 0x060);
     words(m, 0x055, {0x8003, 0, 0, 0, 0});
     end_marker(m, 0x060, 90);
@@ -297,6 +299,88 @@ TEST_F(Dma8Bit, AWordIsTwoByteReadsAndDmareqrDropsAtTheFirstOfTheLast) {
   EXPECT_EQ(rxcnt(chip().reg_read(kDmaCtrl)), 1u);
   EXPECT_EQ(byte_read(1), 0x33);
   EXPECT_EQ(rxcnt(chip().reg_read(kDmaCtrl)), 0u);
+}
+
+// docs/chip.md "Byte lanes" decision: "the even byte (A0 = 0) always travels on D7-0 and
+// the odd byte on D15-8; BYTEDIR says which half of the word the even byte is. So a 16-bit
+// word access with BYTEDIR = 1 carries the word byte-swapped on D15-0". docs/telegram-
+// processing.md "DMA": 8-bit DMA accesses take "bytes by BYTEDIR as for RAM". 16-bit DMA
+// accesses do the same: on a BYTEDIR = 1 board a telegram word appears on D15-0 as a RAM
+// read of it gives it, and a word the DMA controller writes goes on the line in the byte
+// order of the same D15-0 written to a RAM container. (A big-endian host, for which
+// BYTEDIR = 1 is meant, would otherwise get every DMA word byte-swapped.)
+class DmaByteDir : public Dma {
+ protected:
+  DmaByteDir() : Dma(config()) {}
+  static ChipConfig config() {
+    ChipConfig c;
+    c.bytedir = true;  // 16-bit bus (BUSWIDTH = 1), high byte first
+    return c;
+  }
+  static constexpr std::array<std::uint16_t, 3> kWords{0x1122, 0x3344, 0x5566};
+
+  // D15-0 of a 16-bit RAM read / write cycle (MCSN0 = MCSN1 = 0, BHEN = 0) of word `at`.
+  std::uint16_t ram_cycle_read(std::uint16_t at) {
+    BusCycle c;
+    c.address = static_cast<std::uint16_t>(2 * at);
+    c.bhen = false;
+    c.mcsn0 = c.mcsn1 = false;
+    return chip().bus(c).data;
+  }
+  void ram_cycle_write(std::uint16_t at, std::uint16_t data) {
+    BusCycle c;
+    c.write = true;
+    c.address = static_cast<std::uint16_t>(2 * at);
+    c.data = data;
+    c.bhen = false;
+    c.mcsn0 = c.mcsn1 = false;
+    chip().bus(c);
+  }
+};
+
+// Receive: the RAM container's words go out, come back and enter the receive FIFO; each
+// must appear on D15-0 of the DMA read as it does on D15-0 of a RAM read of that word.
+TEST_F(DmaByteDir, DmaReadPutsAWordOnD15To0AsARamReadDoes) {
+  chip().reg_write(kDmaCtrl, kDmaRxEn);
+  start(0x5005, 0x0905, kWords);  // transmit from RAM every cycle; receive ACHK + DMA
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  ASSERT_EQ(rxcnt(chip().reg_read(kDmaCtrl)), 3u);  // the 3 words are in
+  for (const std::uint16_t at : std::array<std::uint16_t, 3>{0x045, 0x046, 0x047}) {
+    const std::uint16_t ram = ram_cycle_read(at);
+    EXPECT_EQ(dma_read(), ram) << "RAM word " << at << " reads 0x" << std::hex << ram
+                               << " on D15-0";
+  }
+  // The word API gives logical values on every board (docs/chip.md "Word API").
+  EXPECT_EQ(chip().ram_read(0x045), kWords[0]);
+}
+
+// Transmit: D15-0 written by the DMA controller must go on the line as the same D15-0
+// written to a RAM container by a RAM write cycle would.
+TEST_F(DmaByteDir, DmaWriteTakesD15To0AsARamWriteDoes) {
+  chip().reg_write(kDmaCtrl, kDmaTxEn);
+  std::vector<std::uint8_t> expected;
+  for (const std::uint16_t data : std::array<std::uint16_t, 3>{0xAABB, 0xCCDD, 0xEEFF}) {
+    dma_write(data);
+    ram_cycle_write(0x100, data);  // a spare word: what a RAM container would hold
+    const std::uint16_t word = chip().ram_read(0x100);
+    expected.push_back(static_cast<std::uint8_t>(word & 0xFF));  // little-endian (facts §2)
+    expected.push_back(static_cast<std::uint8_t>(word >> 8));
+  }
+  start(0x5105, 0x0805);  // transmit with DMA = 1
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  EXPECT_EQ(list_data(), expected);
+}
+
+// The word API's whole DMA cycles move logical words on every board, as ram_read /
+// ram_write do (docs/chip.md "Word API"): BYTEDIR changes nothing there.
+TEST_F(DmaByteDir, WholeCycleCallsMoveLogicalWords) {
+  chip().reg_write(kDmaCtrl, kDmaRxEn | kDmaTxEn);
+  DmaPort& port = *chip().unit<DmaPort>();
+  port.acknowledge_write(0x1234);
+  start(0x5105, 0x0905);  // the FIFO's word goes out and comes back into the receive FIFO
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  ASSERT_EQ(port.receive_count(), 3u);
+  EXPECT_EQ(port.acknowledge_read(), 0x1234);
 }
 
 }  // namespace

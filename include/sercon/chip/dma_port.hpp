@@ -14,8 +14,10 @@
 // Overrun (a word that finds the FIFO full or disabled) and underrun (a word wanted from an
 // empty or disabled FIFO) raise INT_DMAERR. DMACTRL (0x0C): DMARXEN / DMATXEN enable (0
 // also empties the FIFO), RXCNT / TXCNT count the words held.
-// 16-bit bus: one access moves one word. 8-bit bus: two byte accesses per word, A0 = 0
-// then A0 = 1 (byte order by BYTEDIR as for RAM); the word moves with the A0 = 1 access.
+// 16-bit bus: one access moves one word, on D15-0 as a RAM word (BYTEDIR = 1 swaps its
+// bytes). 8-bit bus: two byte accesses per word, A0 = 0 then A0 = 1 (byte order by BYTEDIR
+// as for RAM); the word moves with the A0 = 1 access. acknowledge_read / _write move
+// logical words, as the chip's word API does.
 #pragma once
 
 #include <cstdint>
@@ -64,7 +66,7 @@ class DmaPort : public ChipUnit {
   void end_write(bool completes, std::uint16_t bits, std::uint16_t mask);
 
   BusStrobes strobes() const;
-  ByteLanes lanes(unsigned a0) const;  // 8-bit bus
+  ByteLanes lanes(bool bus16, unsigned a0) const;  // as for RAM; a0 on an 8-bit bus only
   unsigned address_a0() const;
   void on_strobe_pin();
   void read_starts();
