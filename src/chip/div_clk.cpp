@@ -33,6 +33,12 @@ DivClk::DivClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
   regs_.on_change([this](std::uint8_t address) {
     if (address == poldivclk_.address) drive();
   });
+  // Delta spec 2.7: a programming of NDIVCLK != 0 restarts mode 1 "after the first cycle",
+  // also when the 0 before it lasted less than a cycle: every moment the register holds
+  // NDIVCLK = 0 (or mode 0) re-arms, not only a cycle start that sees it.
+  regs_.on_write(ndivclk_.address, [this](std::uint16_t, std::uint16_t) {
+    if (ndivclk_.get(regs_) == 0 || !divclkmode_.on(regs_)) first_due_ = true;
+  });
 }
 
 void DivClk::reset(ResetCause) {

@@ -144,6 +144,44 @@ TEST(DivClk, ModeOneProgrammedWhileRunning) {
   EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
 }
 
+// Delta spec 2.7 (DIVCLKMODE = 1): "NDIVCLK 0: Never becomes active ... The output DIV_CLK
+// goes active the first time in the first SERCOS cycle (if NDIVCLK != 0) or after the first
+// cycle when NDIVCLK is being programmed to a value not equal zero."
+// NDIVCLK = 3 pulses in cycles 0 and 3. In cycle 1 the host stops DIV_CLK (NDIVCLK = 0) and
+// programs NDIVCLK = 3 again 50 µs later: that programming restarts the sequence, so the
+// first pulse comes after the first cycle, in cycle 2 (as ModeOneProgrammedWhileRunning has
+// it for a programming from 0), then every third cycle: 2, 5, 8 (not the old sequence's
+// 3, 6, 9, which a look at NDIVCLK at cycle starts only would keep).
+TEST(DivClk, ModeOneReprogrammingWithinACycleRestartsTheSequence) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 40);
+  b.chip.reg_write(kDivCtrl, kDivclkmode | 3);
+  b.start_master();
+  b.write_at(b.cycle_start(1) + 100 * kMicrosecond, kDivCtrl, kDivclkmode);
+  b.write_at(b.cycle_start(1) + 150 * kMicrosecond, kDivCtrl, kDivclkmode | 3);
+  b.run_to(b.cycle_start(10) - 1);
+  std::vector<Time> starts;
+  for (std::int64_t k : {0, 2, 5, 8}) starts.push_back(b.at_cycle_time(k, 40));
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
+// Decision (docs/timing.md "DIV_CLK"): mode 0 restarts mode 1's sequence as NDIVCLK = 0
+// does, also when it is chosen only for a moment within a cycle. Without the 0, a new
+// NDIVCLK (3 -> 2) continues the count: the next pulse is 2 cycles after the last.
+TEST(DivClk, ModeOneRestartsAfterModeZeroWithinACycleButNotOnANewCount) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 40);
+  b.chip.reg_write(kDivCtrl, kDivclkmode | 3);
+  b.start_master();
+  b.write_at(b.cycle_start(1) + 100 * kMicrosecond, kDivCtrl, 3);  // mode 0, no pulse planned
+  b.write_at(b.cycle_start(1) + 150 * kMicrosecond, kDivCtrl, kDivclkmode | 3);
+  b.write_at(b.cycle_start(2) + 100 * kMicrosecond, kDivCtrl, kDivclkmode | 2);
+  b.run_to(b.cycle_start(7) - 1);
+  std::vector<Time> starts;
+  for (std::int64_t k : {0, 2, 4, 6}) starts.push_back(b.at_cycle_time(k, 40));
+  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+}
+
 // Delta spec 2.7: DIVCLKMODE is new in the 816; the 410B has mode 0 only (the bit is not
 // there, so writing it changes nothing).
 TEST(DivClk, The410BIgnoresDivclkmode) {

@@ -5,7 +5,8 @@
 //     first at TDIVCLK, then every DTDIVCLK µs; pulses that would start at or after the
 //     cycle time TSCYC are dropped;
 //   mode 1 (816): one pulse at TDIVCLK every NDIVCLK cycles, the first in the first
-//     cycle that starts with NDIVCLK != 0.
+//     cycle that starts with NDIVCLK != 0 after NDIVCLK was 0 or mode 0 was chosen (at a
+//     cycle start or by any write, also within a cycle).
 // NDIVCLK = 0: never. POLDIVCLK: 0 active high, 1 active low. INT_DIVCLK at each start.
 #pragma once
 
@@ -46,7 +47,7 @@ class DivClk : public ChipUnit {
   Output pin_;
   FieldRef ndivclk_, poldivclk_, divclkmode_;
   bool active_ = false;
-  bool first_due_ = true;  // mode 1: the next cycle with NDIVCLK != 0 pulses
+  bool first_due_ = true;  // mode 1: the next cycle with NDIVCLK != 0 pulses (re-armed)
   std::int64_t cycles_since_pulse_ = 0;
   std::vector<TimeBase::CycleEvent> planned_;
   TickAlarm end_;
