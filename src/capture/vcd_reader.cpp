@@ -41,15 +41,24 @@ class VcdParser {
   }
 
  private:
-  // The keywords of IEEE 1364 §18.2 (VCD declaration and simulation commands).
-  static bool is_command(std::string_view tok) {
-    static constexpr std::string_view kCommands[] = {
-        "$comment", "$date",    "$enddefinitions", "$scope",   "$timescale", "$upscope",
-        "$var",     "$version", "$dumpall",        "$dumpoff", "$dumpon",    "$dumpvars"};
-    for (std::string_view c : kCommands) {
+  // The keywords of IEEE 1364 §18.2: the simulation commands, which open a section of values
+  // in the body, and with the declaration commands all of them.
+  static bool is_dump_command(std::string_view tok) {
+    static constexpr std::string_view kDumpCommands[] = {"$dumpall", "$dumpoff", "$dumpon",
+                                                         "$dumpvars"};
+    for (std::string_view c : kDumpCommands) {
       if (tok == c) return true;
     }
     return false;
+  }
+  static bool is_command(std::string_view tok) {
+    static constexpr std::string_view kDeclarationCommands[] = {
+        "$comment", "$date", "$enddefinitions", "$scope", "$timescale",
+        "$upscope", "$var",  "$version"};
+    for (std::string_view c : kDeclarationCommands) {
+      if (tok == c) return true;
+    }
+    return is_dump_command(tok);
   }
 
   [[noreturn]] void fail(const std::string& what) const {
@@ -179,7 +188,7 @@ class VcdParser {
       } else if (c == 'r' || c == 'R') {
         const std::string value(tok);
         apply('x', identifier_after(value), trace);  // a real is never a line level
-      } else if (tok == "$dumpvars" || tok == "$dumpall" || tok == "$dumpon" || tok == "$dumpoff") {
+      } else if (is_dump_command(tok)) {
         in_dump_section = true;
       } else if (tok == "$end") {
         if (!in_dump_section) fail("$end without an open command");
