@@ -294,7 +294,23 @@ TestMode Chip::test_mode() const {
 
 // --- µP bus ---------------------------------------------------------------------------
 
-BusResult Chip::bus(const BusCycle& cycle) {
+BusResult Chip::bus(const BusCycle& cycle) { return access(cycle, true); }
+
+bool Chip::write_strobe_starts(const BusCycle& cycle) {
+  if (outz_ || decode_target(cycle) != BusTarget::Ram) return false;
+  const ByteLanes lanes =
+      byte_lanes(input_high(Pin::BUSWIDTH), input_high(Pin::BYTEDIR), cycle.address, cycle.bhen);
+  if (lanes.word_mask() == 0) return false;  // no byte lane: no word is touched
+  return busy_.host_access(ram_word(cycle.address, ram_.size()));
+}
+
+BusResult Chip::write_strobe_ends(const BusCycle& cycle) {
+  BusCycle c = cycle;
+  c.write = true;
+  return access(c, false);  // the collision was the strobe start's question
+}
+
+BusResult Chip::access(const BusCycle& cycle, bool ask_busy) {
   const BusTarget target = decode_target(cycle);
   if (target == BusTarget::Both) {
     throw std::invalid_argument(
@@ -306,16 +322,17 @@ BusResult Chip::bus(const BusCycle& cycle) {
   if (outz_ || target == BusTarget::None) return result;  // D15-0 float, writes ignored
   const ByteLanes lanes =
       byte_lanes(input_high(Pin::BUSWIDTH), input_high(Pin::BYTEDIR), cycle.address, cycle.bhen);
-  return target == BusTarget::Ram ? ram_cycle(cycle, lanes) : register_cycle(cycle, lanes);
+  return target == BusTarget::Ram ? ram_cycle(cycle, lanes, ask_busy)
+                                  : register_cycle(cycle, lanes);
 }
 
-BusResult Chip::ram_cycle(const BusCycle& cycle, const ByteLanes& lanes) {
+BusResult Chip::ram_cycle(const BusCycle& cycle, const ByteLanes& lanes, bool ask_busy) {
   BusResult result;
   result.target = BusTarget::Ram;
   const std::uint16_t mask = lanes.word_mask();
   if (mask == 0) return result;  // 16-bit bus, A0 = 1 and BHEN = 1: no byte lane
   const std::uint16_t word = ram_word(cycle.address, ram_.size());
-  result.busy = busy_.host_access(word);
+  result.busy = ask_busy && busy_.host_access(word);
   result.driven = lanes.data_mask();
   if (cycle.write) {
     ram_.write(word, lanes.to_word(cycle.data), mask);

@@ -17,8 +17,8 @@ PinBus::PinBus(Chip& chip) : chip_(chip) {
 }
 
 void PinBus::reset(ResetCause) {
-  // Nothing to clear: the interface is combinational apart from the address latch, which
-  // follows its enables, and a read in progress drives D15-0 until its strobe ends.
+  // The reset released BUSYN: a write in progress reports no collision.
+  write_busy_ = false;
 }
 
 BusStrobes PinBus::strobes() const {
@@ -57,7 +57,20 @@ void PinBus::run(const BusCycle& cycle) {
     ++refused_;
     return;
   }
-  last_ = chip_.bus(cycle);
+  if (!cycle.write) {
+    last_ = chip_.bus(cycle);
+    return;
+  }
+  last_ = chip_.write_strobe_ends(cycle);
+  last_.busy = write_busy_;
+}
+
+void PinBus::write_starts() {
+  // Datasheet 3.5.7 t_MBSY: BUSYN falls from the begin of the write access, so the
+  // collision is the strobe start's, though the data is taken at its end.
+  const BusCycle cycle = sample(true);
+  write_busy_ = chip_.input_high(Pin::DMAACKTN) && decode_target(cycle) == BusTarget::Ram &&
+                chip_.write_strobe_starts(cycle);
 }
 
 void PinBus::on_strobe_pin() {
@@ -65,7 +78,9 @@ void PinBus::on_strobe_pin() {
   if (active_.read && !now.read) release_data_lines();
   if (active_.write && !now.write) run(sample(true));  // data is taken at the end
   const bool read_starts = !active_.read && now.read;
+  const bool write_starts_now = !active_.write && now.write;
   active_ = now;
+  if (write_starts_now) write_starts();
   if (!read_starts) return;
   last_ = BusResult{};
   run(sample(false));

@@ -5,12 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+#include <vector>
+
 #include "chip_fixture.hpp"
 
 namespace sercon::chip {
 namespace {
 
 using sim::Level;
+using sim::Time;
 using testing::ChipOnBench;
 
 class PinBusTest : public ::testing::Test {
@@ -164,6 +168,86 @@ TEST_F(PinBusTest, ByteReadDrivesOneLane) {
   EXPECT_FALSE(chip().drives(Pin::D8));
   EXPECT_EQ(data_lines(), 0xFF34);
   set(Pin::RDN, true);
+}
+
+// BUSYN for strobes over a RAM word the telegram processor uses in the same MCLK period
+// (Table 1 BUSYN). Datasheet 3.5.7: t_MBSY "Delay WRN or RDN (begin of write access) to
+// BUSYN low" max 15 ns, t_MBHWH "Setup time BUSYN high to end of write access" min 15 ns;
+// 3.5.5: t_MBSY "delay RDN to BUSYN low". MCLK 32 MHz: period 3 runs 93 750 .. 125 000 ps,
+// period 5 156 250 .. 187 500 ps.
+class PinBusBusyn : public PinBusTest {
+ protected:
+  PinBusBusyn() {
+    chip().pin(Pin::BUSYN).watch([this](Level l) { edges.emplace_back(bench.scheduler.now(), l); });
+    set(Pin::BHEN, false);
+    address(0x0123 * 2);
+    select_ram(true);
+  }
+  Level busyn() { return chip().pin(Pin::BUSYN).level(); }
+
+  std::vector<std::pair<Time, Level>> edges;
+};
+
+// Control: a read's collision is the strobe start's.
+TEST_F(PinBusBusyn, ReadStrobeCollisionPullsBusynAtTheStrobeStart) {
+  bench.scheduler.run_until(100'000);
+  chip().tp_ram_write(0x0123, 0x4444);
+  set(Pin::RDN, false);  // the read begins in the same MCLK period
+  EXPECT_EQ(busyn(), Level::Low);
+  EXPECT_EQ(data_lines(), 0x4444);
+  bench.scheduler.run_until(110'000);
+  set(Pin::RDN, true);
+  bench.scheduler.run_until(200'000);
+  using E = std::pair<Time, Level>;
+  EXPECT_EQ(edges, (std::vector<E>{{100'000, Level::Low}, {125'000, Level::High}}));
+}
+
+TEST_F(PinBusBusyn, WriteStrobeCollisionPullsBusynAtTheStrobeStart) {
+  data(0xBEEF);
+  bench.scheduler.run_until(100'000);
+  chip().tp_ram_write(0x0123, 0x4444);           // the telegram processor uses word 0x123
+  set(Pin::WRN, false);                          // the µP's write to it begins in the same period
+  EXPECT_EQ(busyn(), Level::Low);                // t_MBSY
+  EXPECT_EQ(chip().ram().read(0x0123), 0x4444);  // the data is not taken yet
+  bench.scheduler.run_until(160'000);
+  set(Pin::WRN, true);  // the end of the write, two MCLK periods later
+  bench.scheduler.run_until(200'000);
+  using E = std::pair<Time, Level>;
+  // High again at the next MCLK edge, 35 ns before the end (t_MBHWH), and not again.
+  EXPECT_EQ(edges, (std::vector<E>{{100'000, Level::Low}, {125'000, Level::High}}));
+  EXPECT_EQ(chip().ram().read(0x0123), 0xBEEF);
+  EXPECT_TRUE(chip().unit<PinBus>()->last_result().busy);
+}
+
+// A write strobe that ends inside the collision period: BUSYN fell at its start and does
+// not fall (again) at its end.
+TEST_F(PinBusBusyn, ShortWriteStrobeCollisionDoesNotDropBusynAtTheStrobeEnd) {
+  data(0xBEEF);
+  bench.scheduler.run_until(95'000);
+  chip().tp_ram_write(0x0123, 0x4444);
+  set(Pin::WRN, false);
+  bench.scheduler.run_until(120'000);  // t_MWRW = 25 ns >= 20 ns
+  set(Pin::WRN, true);
+  bench.scheduler.run_until(200'000);
+  using E = std::pair<Time, Level>;
+  EXPECT_EQ(edges, (std::vector<E>{{95'000, Level::Low}, {125'000, Level::High}}));
+  EXPECT_EQ(chip().ram().read(0x0123), 0xBEEF);
+}
+
+// The telegram processor uses the word in the period the write ends in, not the one it
+// began in: no collision, as BUSYN must be high before the end of the write (t_MBHWH).
+TEST_F(PinBusBusyn, WriteStrobeEndDoesNotPullBusyn) {
+  data(0xBEEF);
+  bench.scheduler.run_until(100'000);
+  set(Pin::WRN, false);
+  bench.scheduler.run_until(160'000);
+  chip().tp_ram_write(0x0123, 0x4444);
+  bench.scheduler.run_until(170'000);
+  set(Pin::WRN, true);
+  bench.scheduler.run_until(200'000);
+  EXPECT_TRUE(edges.empty());
+  EXPECT_EQ(chip().ram().read(0x0123), 0xBEEF);
+  EXPECT_FALSE(chip().unit<PinBus>()->last_result().busy);
 }
 
 }  // namespace

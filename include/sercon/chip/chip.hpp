@@ -65,6 +65,12 @@ class Chip {
   // One bus cycle as the pins see it (bus.hpp). Throws std::invalid_argument when RAM
   // and registers are selected at once (a board fault: both would drive D15-0).
   BusResult bus(const BusCycle& cycle);
+  // A write strobe through the pins (PinBus) in its two events. Its start asks the
+  // BusyArbiter about the addressed RAM word and returns true when BUSYN goes low
+  // (datasheet 3.5.7 t_MBSY: from the begin of the write access); its end writes D15-0
+  // without asking again (t_MBHWH: BUSYN is high before the end). bus() does both at once.
+  bool write_strobe_starts(const BusCycle& cycle);
+  BusResult write_strobe_ends(const BusCycle& cycle);
   // Word accesses as the board's µP makes them with the present BUSWIDTH / BYTEDIR pins:
   // one 16-bit cycle, or two byte cycles (A0 = 0 first) on an 8-bit bus. The value is the
   // register's or RAM word's logical value. Registers: word_address 0x00..0x3F (0x2B..0x3F
@@ -239,7 +245,8 @@ class Chip {
   void refresh_outputs();
   void on_sermode_write(std::uint16_t written);
   [[noreturn]] static void tp_run_beyond_the_ram();
-  BusResult ram_cycle(const BusCycle& cycle, const ByteLanes& lanes);
+  BusResult access(const BusCycle& cycle, bool ask_busy);
+  BusResult ram_cycle(const BusCycle& cycle, const ByteLanes& lanes, bool ask_busy);
   BusResult register_cycle(const BusCycle& cycle, const ByteLanes& lanes);
 
   sim::Scheduler& scheduler_;

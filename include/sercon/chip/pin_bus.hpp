@@ -2,7 +2,8 @@
 // RDN/WRN in Intel or Motorola mode (BUSMODE1-0), address from A15-0 or from the address
 // latch (ADMUX, ALEL, ALEH), chip selects, BHEN and D15-0. Each strobe becomes one
 // Chip::bus() cycle: reads at the start of the strobe (the chip then drives its data
-// lanes until the strobe ends), writes at its end with D15-0 as they are then.
+// lanes until the strobe ends), writes at its end with D15-0 as they are then; a write's
+// start asks for BUSYN (Chip::write_strobe_starts).
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,7 @@ class PinBus : public ChipUnit {
   void drive_address_lines();
   BusCycle sample(bool write) const;
   void run(const BusCycle& cycle);
+  void write_starts();
   void release_data_lines();
 
   Chip& chip_;
@@ -40,6 +42,7 @@ class PinBus : public ChipUnit {
   std::uint16_t latch_ = 0;
   std::uint16_t driven_ = 0;  // data lines this unit drives for a read in progress
   std::uint64_t refused_ = 0;
+  bool write_busy_ = false;  // the write in progress collided at its start
   BusResult last_;
 };
 
