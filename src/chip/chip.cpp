@@ -170,8 +170,8 @@ void Chip::enter_reset(ResetCause cause) {
   for (std::size_t i = 0; i < kPinCount; ++i) {
     const Pin p = pin_at(i);
     const PinDirection dir = pin_info(p).direction;
-    // D15-0 and A15-0 belong to the bus interface (PinBus), which is not reset; BUSYN and
-    // NDTRO (combinational) are driven by their owners without a glitch.
+    // D15-0 and A15-0 belong to the bus interface (PinBus, DmaPort), whose resets release
+    // D15-0; BUSYN and NDTRO (combinational) are driven by their owners without a glitch.
     if (dir == PinDirection::Out && p != Pin::BUSYN && p != Pin::NDTRO) {
       set_output(p, reset_output_level(p, variant()));
     }

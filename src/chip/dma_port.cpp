@@ -28,6 +28,7 @@ void DmaPort::reset(ResetCause) {
   tx_partial_ = 0;
   tx_writing_ = false;
   write_acknowledged_ = false;  // a write the reset cut short moves nothing when it ends
+  read_ends();                  // D15-0 HighZ: a read the reset cut short drives no more
   // The chip has set DMAREQR/T inactive already: a reset does not wait for MCLK.
   request_edge_.cancel();
   reqr_out_ = reqt_out_ = false;
@@ -197,8 +198,8 @@ unsigned DmaPort::address_a0() const {
 
 // Held in reset (RSTN = 0, OUTZ = 1) the port starts no access: like the registers it is
 // held, so a DMA controller cycling on meets no FIFO, drives nothing and latches no
-// INT_DMAERR (docs/chip.md "Resets"). Ends are still followed, so a read begun before the
-// reset releases D15-0.
+// INT_DMAERR (docs/chip.md "Resets"). Ends are still followed; the reset itself released
+// D15-0 of a read begun before it.
 void DmaPort::on_strobe_pin() {
   const BusStrobes now = strobes();
   if (active_.read && !now.read) read_ends();

@@ -17,6 +17,9 @@ PinBus::PinBus(Chip& chip) : chip_(chip) {
 }
 
 void PinBus::reset(ResetCause) {
+  // Every reset sets D15-0 HighZ (docs/chip.md "Resets"). A read samples its word when
+  // its strobe starts, so a strobe still held drives nothing until a new one begins.
+  release_data_lines();
   // The reset released BUSYN: a write in progress reports no collision.
   write_busy_ = false;
 }

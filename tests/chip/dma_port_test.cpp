@@ -4,6 +4,9 @@
 // are in telegram_dma_test.cpp.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <span>
+
 #include "sercon/chip/dma_port.hpp"
 #include "timing_bench.hpp"
 
@@ -14,6 +17,7 @@ using namespace testing;
 
 constexpr Time kStrobe = 50'000;  // 50 ns
 // DMACTRL (0x0C): DMARXEN bit 0, DMATXEN bit 1 (docs/registers.md).
+constexpr std::uint16_t kDmaRxEn = 0x0001;
 constexpr std::uint16_t kDmaTxEn = 0x0002;
 
 struct DmaPins : TimingBench {
@@ -79,6 +83,23 @@ TEST(DmaPort, WholeCyclesWhileHeldInResetDoNothing) {
   EXPECT_EQ(port.transmit_count(), 0u);
   b.chip.drive(Pin::RSTN, Level::High);
   EXPECT_EQ(b.chip.reg_read(kIntStat) & kIntDmaerr, 0);
+}
+
+// The same defect the pin bus had: a DMA read in progress when RSTN falls must not keep
+// driving the FIFO word (docs/chip.md "Resets": every reset sets D15-0 HighZ).
+TEST(DmaPort, RstnDuringAReadReleasesD15To0) {
+  DmaPins b;
+  b.chip.reg_write(kDmaCtrl, kDmaRxEn);
+  const std::uint16_t word = 0x1234;
+  b.chip.unit<DmaPort>()->receive(std::span(&word, 1));
+  b.chip.drive(Pin::DMAACKRN, Level::Low);
+  b.chip.drive(Pin::RDN, Level::Low);
+  ASSERT_TRUE(b.chip.drives(Pin::D2));  // bit 2 of 0x1234
+  b.chip.drive(Pin::RSTN, Level::Low);
+  for (unsigned bit = 0; bit < 16; ++bit) EXPECT_FALSE(b.chip.drives(data_pin(bit))) << bit;
+  b.chip.drive(Pin::RDN, Level::High);
+  b.chip.drive(Pin::DMAACKRN, Level::High);
+  b.chip.drive(Pin::RSTN, Level::High);
 }
 
 // Datasheet 3.5.1, t_MCLD: "Output delay rising edge MCLK to DMAREQR/T, CON_CLK, DIV_CLK",

@@ -250,5 +250,59 @@ TEST_F(PinBusBusyn, WriteStrobeEndDoesNotPullBusyn) {
   EXPECT_FALSE(chip().unit<PinBus>()->last_result().busy);
 }
 
+// A register read in progress through a reset. docs/chip.md "Resets": every reset "sets
+// every output inactive", D15-0 HighZ, and while RSTN = 0 or OUTZ = 1 reads give reset
+// values; Table 1 OUTZ: "the circuit is reset". A read samples its word when the strobe
+// starts, so after the reset a strobe still held drives nothing; a new strobe reads the
+// register as it now is. PHAS0 (0x0A) = 3 before the reset, 0 after it.
+class PinBusReset : public PinBusTest {
+ protected:
+  PinBusReset() {
+    chip().reg_write(0x0A, 3);
+    set(Pin::BHEN, false);
+    address(0x0A * 2);
+    select_registers(true);
+  }
+};
+
+// Control: a read strobe that begins after the reset reads the reset value.
+TEST_F(PinBusReset, ReadAfterResetShowsTheResetValue) {
+  chip().drive(Pin::OUTZ, Level::High);
+  chip().drive(Pin::OUTZ, Level::Low);
+  set(Pin::RDN, false);
+  EXPECT_TRUE(any_data_driven());
+  EXPECT_EQ(data_lines(), 0);
+  set(Pin::RDN, true);
+}
+
+TEST_F(PinBusReset, OutzPulseDuringAReadDoesNotDriveThePreResetValue) {
+  set(Pin::RDN, false);
+  ASSERT_EQ(data_lines(), 3);
+  chip().drive(Pin::OUTZ, Level::High);  // the circuit is reset
+  chip().drive(Pin::OUTZ, Level::Low);
+  ASSERT_EQ(chip().reg_read(0x0A), 0);
+  EXPECT_FALSE(any_data_driven()) << "D15-0 driven with 0x" << std::hex << data_lines();
+  EXPECT_EQ(data_lines(), 0xFFFF);  // floating, pulled up
+  set(Pin::RDN, true);
+  set(Pin::RDN, false);  // a new read
+  EXPECT_EQ(data_lines(), 0);
+  set(Pin::RDN, true);
+  EXPECT_FALSE(any_data_driven());
+}
+
+TEST_F(PinBusReset, RstnDuringAReadDoesNotKeepDrivingThePreResetValue) {
+  set(Pin::RDN, false);
+  ASSERT_EQ(data_lines(), 3);
+  chip().drive(Pin::RSTN, Level::Low);  // registers now held at their reset values
+  EXPECT_FALSE(any_data_driven()) << "D15-0 driven with 0x" << std::hex << data_lines();
+  EXPECT_NO_THROW(chip().drive(Pin::D0, Level::Low));  // the lines are free for the board
+  chip().drive(Pin::D0, Level::HighZ);
+  set(Pin::RDN, true);
+  set(Pin::RDN, false);  // a new read in reset gives the reset value
+  EXPECT_EQ(data_lines(), 0);
+  set(Pin::RDN, true);
+  chip().drive(Pin::RSTN, Level::High);
+}
+
 }  // namespace
 }  // namespace sercon::chip
