@@ -124,7 +124,11 @@ typedef enum sercon_pin {
 typedef struct sercon_chip_config {
   int variant;     /* sercon_variant */
   int64_t mclk_hz; /* 12..64 MHz, any whole number of Hz */
-  int64_t sclk_hz; /* up to 64 MHz (64 MHz nominal) */
+  /* SCLK, up to 64 MHz (64 MHz nominal); at least 32 MHz on the SERCON816 with
+   * sbaud16 = 0 (PLL on); SCLK and SCLK / 4 must divide 1e12 (whole-picosecond periods)
+   * and SCLK / 32 must be whole Hz: 64, 50, 40, 32 MHz are accepted, 48 MHz is refused
+   * (docs/chip.md, "Configuration"). */
+  int64_t sclk_hz;
   /* Levels (0 or 1) of the strap pins the board ties. */
   int sbaud;   /* pin 29 */
   int sbaud16; /* pin 28: 1 = 410B-compatible mode (SREGEN on the 410B, must be 1) */

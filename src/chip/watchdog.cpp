@@ -101,13 +101,15 @@ void Watchdog::load() {
 void Watchdog::expire() {
   running_ = false;
   start_.set(regs_, false);  // WDOG_STAT = 0: "it switches off automatically"
-  interrupts_.raise(Irq::Wdog);
   // Delta spec 2.6.2: ENTMT = 0, PHAS0 = 0, not writable until INT_WDOG is cleared.
   entmt_.set(regs_, false);
   phas0_.put(regs_, 0);
   regs_.lock(entmt_.address, entmt_.mask, true);
   regs_.lock(phas0_.address, phas0_.mask, true);
   protecting_ = true;
+  // Raised last: the INT0/INT1 pin callbacks run inside raise() and may clear INT_WDOG,
+  // which must find the lock in place to lift it.
+  interrupts_.raise(Irq::Wdog);
   if (!wdout_.on(regs_)) return;
   // Delta spec 2.6.1: WDOGN "remains active for the next minimum 2, maximum 3 periods".
   drive_output(true);
