@@ -48,12 +48,13 @@ void ConClk::plan(const CycleStart& start) {
   planned_ = time_base_.at_cycle_time(at, [this] { starts(); });
 }
 
+// INT_CONCLK ("CON_CLK became active") last: the pin callbacks it runs see CON_CLK active.
 void ConClk::starts() {
-  interrupts_.raise(Irq::ConClk);
   active_ = true;
   drive();
   const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
   end_.at_edge(now + regs_.value(kWconclk) * time_base_.tick_period());
+  interrupts_.raise(Irq::ConClk);
 }
 
 // The next cycle's start at this very instant continues the output without a gap.

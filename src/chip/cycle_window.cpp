@@ -44,10 +44,12 @@ void CycleWindow::forget() {
   state_ = State::Unsynced;
 }
 
+// The slave's free-wheel first: a handler run from the INT0 / INT1 callback of
+// INT_MSTMISS reads the substitute cycle's counter.
 void CycleWindow::close() {
   state_ = State::Missed;
-  interrupts_.raise(Irq::MstMiss);
   closed_empty_();
+  interrupts_.raise(Irq::MstMiss);
 }
 
 void CycleWindow::judge(bool master) {

@@ -88,12 +88,13 @@ void DivClk::plan_pulse_at(std::int64_t cycle_time) {
   if (id != 0) planned_.push_back(id);
 }
 
+// INT_DIVCLK ("A DIV_CLK pulse began") last: the pin callbacks it runs see the pulse.
 void DivClk::pulse_starts() {
-  interrupts_.raise(Irq::DivClk);
   active_ = true;
   drive();
   const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
   end_.at_edge(now + time_base_.tick_period());
+  interrupts_.raise(Irq::DivClk);
 }
 
 // A pulse starting at this very instant (DTDIVCLK = 1, or the next cycle's first pulse)

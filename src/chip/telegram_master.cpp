@@ -18,9 +18,10 @@ MasterMst::MasterMst(TimeBase& time_base, Interrupts& interrupts, SerialUnit& se
       jtrdel1_(field_ref("JTRDEL1", regs_.variant())),
       jtrdel2_(field_ref("JTRDEL2", regs_.variant())) {}
 
+// Counted before the raise: a handler run from the INT0 / INT1 callback reads NMSTERR.
 void MasterMst::error() {
-  interrupts_.raise(Irq::RetMst);
   ram_.count_error(telegram::kNmsterr);
+  interrupts_.raise(Irq::RetMst);
 }
 
 bool MasterMst::send() {

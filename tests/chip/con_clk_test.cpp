@@ -47,6 +47,24 @@ TEST(ConClk, ActiveFromTconclkForWconclkMicroseconds) {
   EXPECT_EQ(b.pin_log.changes, expected);
 }
 
+// sercon.h: "a pin callback may read and write registers, RAM and pins". An INT0 handler
+// for INT_CONCLK ("CON_CLK became active") finds CON_CLK active.
+TEST(ConClk, Int0CallbackSeesConClkActive) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.chip.reg_write(kWconclk, 5);
+  b.chip.reg_write(kIen0A, kIntConclk);
+  std::vector<Level> seen;
+  b.pin(Pin::INT0).watch([&b, &seen](Level level) {
+    if (level != Level::High) return;
+    seen.push_back(b.pin(Pin::CON_CLK).level());
+    b.chip.reg_write(kIntStat, kIntConclk);  // acknowledge
+  });
+  b.start_master();
+  b.run_to(2 * kCycle * kMicrosecond - 1);
+  EXPECT_EQ(seen, (std::vector<Level>{Level::High, Level::High}));
+}
+
 // Register table WCONCLK: "0 = never".
 TEST(ConClk, WidthZeroNever) {
   ConClkBench b;

@@ -75,6 +75,25 @@ TEST(DivClk, IntDivclkAtEachPulseStart) {
   }
 }
 
+// sercon.h: "a pin callback may read and write registers, RAM and pins". An INT0 handler
+// for INT_DIVCLK ("A DIV_CLK pulse began") finds the pulse begun.
+TEST(DivClk, Int0CallbackSeesThePulseItAnnounces) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 20);
+  b.chip.reg_write(kDtdivclk, 50);
+  b.chip.reg_write(kDivCtrl, 2);
+  b.chip.reg_write(kIen0A, kIntDivclk);
+  std::vector<Level> seen;
+  b.pin(Pin::INT0).watch([&b, &seen](Level level) {
+    if (level != Level::High) return;
+    seen.push_back(b.pin(Pin::DIV_CLK).level());
+    b.chip.reg_write(kIntStat, kIntDivclk);  // acknowledge
+  });
+  b.start_master();
+  b.run_to(b.cycle_start(1) - 1);
+  EXPECT_EQ(seen, (std::vector<Level>{Level::High, Level::High}));
+}
+
 // Delta spec 2.7 table: "NDIVCLK 0: Never becomes active".
 TEST(DivClk, NdivclkZeroNever) {
   DivClkBench b;

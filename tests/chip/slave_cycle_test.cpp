@@ -108,6 +108,23 @@ TEST(SlaveCycle, MissingMstRaisesMissAndFreeWheels) {
   EXPECT_FALSE(b.flags_at(next_close, kIntCycst));  // no MST was accepted
 }
 
+// sercon.h: "a pin callback may read and write registers, RAM and pins". An INT0 handler
+// for INT_MSTMISS reads the free-wheeling counter, as a read after the event does.
+TEST(SlaveCycle, Int0CallbackOnAMissReadsTheSubstituteCycleCounter) {
+  SlaveBench b;
+  b.chip.reg_write(kIen0A, kIntMstMiss);
+  std::vector<std::uint16_t> seen;
+  b.pin(Pin::INT0).watch([&b, &seen](Level level) {
+    if (level != Level::High) return;
+    seen.push_back(b.chip.reg_read(kTcnt));
+    b.chip.reg_write(kIntStat, kIntMstMiss);  // acknowledge
+  });
+  const Time load = b.mst(100 * kMicrosecond);
+  b.run_to(b.step_into(load, kCloses + 1) + kCycle * kMicrosecond);
+  const auto substitute = static_cast<std::uint16_t>(kCloses + 1 - kCycle);
+  EXPECT_EQ(seen, (std::vector<std::uint16_t>{substitute, substitute}));
+}
+
 // An MST loading at counter TSCYC + JTSCYC2 is on time; one loading as the counter steps
 // out of it meets the miss decision at the same instant: the miss is decided first
 // (whatever the order of equal-time events), then the MST counts as late.

@@ -133,6 +133,26 @@ TEST(TelegramMaster, MissingReturnRaisesRetmstOncePerMst) {
   EXPECT_EQ(ring.chip(0).ram_read(10), 3);
 }
 
+// sercon.h: "a pin callback may read and write registers, RAM and pins". An INT0 handler
+// for INT_RETMST finds NMSTERR already counting the MST it announces.
+TEST(TelegramMaster, Int0CallbackOnRetmstReadsTheCountedError) {
+  Ring ring(1, kFibre);
+  ring.fibre_from(0).cut();
+  const Timing t = timing_16mbit();
+  program_master(ring.chip(0), t, kTscyc, 0);
+  Chip& chip = ring.chip(0);
+  chip.reg_write(kIen0A, kIntRetmst);
+  std::vector<std::uint16_t> seen;
+  chip.pin(Pin::INT0).watch([&chip, &seen](sim::Level level) {
+    if (level != sim::Level::High) return;
+    seen.push_back(chip.ram_read(10));
+    chip.reg_write(kIntStat, kIntRetmst);  // acknowledge
+  });
+  start(ring, t);
+  ring.run_for(350 * sim::kMicrosecond);  // MSTs of cycles 0..3; 0..2 judged missing
+  EXPECT_EQ(seen, (std::vector<std::uint16_t>{1, 2, 3}));
+}
+
 TEST(TelegramMaster, MissingReturnIsJudgedWhenTheWindowEnds) {
   Ring ring(1, kFibre);
   ring.fibre_from(0).cut();
