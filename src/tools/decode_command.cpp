@@ -1,5 +1,7 @@
 #include "decode_command.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -34,7 +36,14 @@ int decode_loaded(const DecodeOptions& options, const LoadedCapture& capture, st
   const DecodeRunInfo info = run_info(options, capture);
   TelegramClassifier classifier;
   DecodeSummary summary;
+  // The reason of the first failed write, taken at once: errno of later calls says nothing.
+  int write_error = 0;
+  const auto note_write = [&] {
+    if (!out && write_error == 0) write_error = errno != 0 ? errno : EIO;
+  };
+  errno = 0;
   if (!options.json) out << text_header(info);
+  note_write();
 
   wire::LineDecoder decoder([&](const wire::DecodedFrame& frame) {
     const TelegramRow row = classifier.classify(frame, capture.time_from_start_ps(frame.start_bit));
@@ -44,6 +53,7 @@ int decode_loaded(const DecodeOptions& options, const LoadedCapture& capture, st
     } else {
       out << text_row(row) << '\n';
     }
+    note_write();
   });
   decoder.feed(capture.line.bits);
   decoder.finish();
@@ -54,6 +64,12 @@ int decode_loaded(const DecodeOptions& options, const LoadedCapture& capture, st
     out << text_summary(summary, info);
   }
   out.flush();
+  note_write();
+  // A listing lost on a full disk or a closed stdout must not pass for a decode that worked.
+  if (write_error != 0) {
+    err << "sercon decode: error: cannot write the output: " << std::strerror(write_error) << '\n';
+    return 1;
+  }
   if (summary.telegrams() + summary.errors() == 0) {
     err << "sercon decode: error: no SERCOS frame found in " << info.file << " (" << info.line_bits
         << " line bits at " << describe_bit_period(info.bit_period_ps)
@@ -86,7 +102,8 @@ void add_decode_command(CLI::App& app) {
       "Prints one line per telegram (time in ns from the capture start, kind, address, length,\n"
       "data in hex, FCS status; MSTs also the phase), broken frames with error=CLASS, then a\n"
       "summary. Exit status 0 for a readable capture, even with broken telegrams; 1 for bad\n"
-      "input; 2 for a malformed command line. See docs/decode.md.\n\n"
+      "input or output that cannot be written; 2 for a malformed command line. See\n"
+      "docs/decode.md.\n\n"
       "Examples:\n"
       "  sercon decode --rate 4M captures/phase-up-4drives.bits\n"
       "  sercon decode captures/cp4-excerpt.vcd\n"

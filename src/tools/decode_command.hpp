@@ -15,8 +15,8 @@ namespace sercon::tools {
 void add_decode_command(CLI::App& app);
 
 // The decode itself: output on `out`, problems on `err`. Returns the exit status: 0 for a
-// readable capture (even with broken telegrams), 1 for bad input (2, from main, for a
-// malformed command line).
+// readable capture (even with broken telegrams), 1 for bad input or an `out` that failed
+// (2, from main, for a malformed command line).
 int run_decode(const DecodeOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace sercon::tools

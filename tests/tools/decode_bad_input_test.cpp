@@ -4,6 +4,10 @@
 // --rate. A readable capture with broken telegrams exits 0 (decode_end_to_end_test.cpp).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <string>
+#include <vector>
+
 #include "run_sercon.hpp"
 #include "sercon/wire/encoder.hpp"
 #include "test_files.hpp"
@@ -144,6 +148,26 @@ TEST_F(DecodeBadInput, NoFrameAtAll) {
 }
 
 TEST_F(DecodeBadInput, MissingFileArgument) { expect_failure({}, {"FILE"}); }
+
+// docs/decode.md "Exit status": 0 only when the listing was written. Stdout on a full disk
+// (/dev/full) or closed loses it: exit 1 with the reason, never 0 with nothing said.
+TEST_F(DecodeBadInput, OutputThatCannotBeWritten) {
+  const std::string capture = source_dir() + "/captures/phase-up-4drives.bits";
+  std::vector<std::string> redirections{">&-"};
+  if (std::filesystem::exists("/dev/full")) redirections.push_back(">/dev/full");
+  for (const std::string& stdout_to : redirections) {
+    for (const char* json : {"", " --json"}) {
+      const std::string command = shell_quote(SERCON_BINARY) + " decode" + json + " --rate 4M " +
+                                  shell_quote(capture) + " " + stdout_to + " 2>" +
+                                  shell_quote(path("err"));
+      const int status = run_command(command);
+      const std::string err = read_file(dir_ / "err");
+      EXPECT_EQ(status, 1) << command << "\nstderr: " << err;
+      EXPECT_NE(err.find("sercon decode: error: cannot write the output: "), std::string::npos)
+          << command << "\nstderr: " << err;
+    }
+  }
+}
 
 }  // namespace
 }  // namespace sercon::testing
