@@ -1,5 +1,9 @@
 #include "sercon/capture/sr_reader.hpp"
 
+#include <charconv>
+#include <cstdint>
+#include <string_view>
+
 #include "sercon/capture/capture_error.hpp"
 #include "sercon/capture/input_file.hpp"
 #include "sercon/capture/sr_metadata.hpp"
@@ -38,14 +42,39 @@ const SrProbe& select_probe(const SrMetadata& meta, std::string_view wanted,
   return *found;
 }
 
+// N of an entry named base-N (N > 0 without a leading zero), or 0.
+std::uint64_t data_entry_number(std::string_view name, const std::string& base) {
+  if (name.size() <= base.size() + 1 || !name.starts_with(base) || name[base.size()] != '-') {
+    return 0;
+  }
+  const std::string_view digits = name.substr(base.size() + 1);
+  std::uint64_t n = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+  if (error != std::errc{} || end != digits.data() + digits.size() || digits[0] == '0') return 0;
+  return n;
+}
+
 // The logic data entries: version 2 splits them into capturefile-1, -2, ...; version 1
-// (and some writers of version 2) use a single entry named capturefile.
-std::vector<std::string> data_entries(const ZipArchive& zip, const std::string& base) {
+// (and some writers of version 2) use a single entry named capturefile. A numbered entry
+// after a missing one means a damaged session: decoding the part before the gap would
+// pass half a capture off as all of it.
+std::vector<std::string> data_entries(const ZipArchive& zip, const std::string& base,
+                                      const std::string& source) {
   std::vector<std::string> entries;
   for (unsigned n = 1;; ++n) {
     const std::string name = base + "-" + std::to_string(n);
     if (!zip.has(name)) break;
     entries.push_back(name);
+  }
+  std::uint64_t later = 0;
+  for (const std::string& name : zip.names()) {
+    const std::uint64_t n = data_entry_number(name, base);
+    if (n > entries.size() && (later == 0 || n < later)) later = n;
+  }
+  if (later != 0) {
+    throw CaptureError(source + ": the logic data entry '" + base + "-" +
+                       std::to_string(entries.size() + 1) + "' is missing but '" + base + "-" +
+                       std::to_string(later) + "' is there (a damaged session)");
   }
   if (entries.empty() && zip.has(base)) entries.push_back(base);
   return entries;
@@ -133,7 +162,7 @@ SrChannel read_sr_file(const std::filesystem::path& file, std::string_view signa
   channel.sample_period_ps =
       static_cast<std::int64_t>((ps_per_second + meta.samplerate_hz / 2) / meta.samplerate_hz);
 
-  const std::vector<std::string> entries = data_entries(zip, meta.capturefile);
+  const std::vector<std::string> entries = data_entries(zip, meta.capturefile, source);
   if (entries.empty()) {
     throw CaptureError(source + ": no logic data ('" + meta.capturefile + "-1' or '" +
                        meta.capturefile + "') in the session");

@@ -38,6 +38,16 @@ bool ZipArchive::has(const std::string& entry) const {
   return zip_name_locate(archive_, entry.c_str(), 0) >= 0;
 }
 
+std::vector<std::string> ZipArchive::names() const {
+  std::vector<std::string> out;
+  const zip_int64_t count = zip_get_num_entries(archive_, 0);
+  for (zip_int64_t i = 0; i < count; ++i) {
+    const char* name = zip_get_name(archive_, static_cast<zip_uint64_t>(i), 0);
+    if (name != nullptr) out.emplace_back(name);
+  }
+  return out;
+}
+
 std::string ZipArchive::read_small(const std::string& entry, std::size_t max_size) const {
   std::string out;
   stream(entry, [&](std::string_view block) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 struct zip;
 
@@ -19,6 +20,9 @@ class ZipArchive {
   ZipArchive& operator=(const ZipArchive&) = delete;
 
   bool has(const std::string& entry) const;
+
+  // The names of all entries, in the archive's order.
+  std::vector<std::string> names() const;
 
   // The whole entry, refused when it is larger than `max_size` bytes.
   std::string read_small(const std::string& entry, std::size_t max_size) const;

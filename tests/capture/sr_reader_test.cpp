@@ -133,6 +133,17 @@ TEST(SrReader, BrokenFilesAreNamed) {
         {"metadata", testing::sr_metadata("1 MHz", {"D0"}, 2)},
         {"logic-1-1", std::string("\x01\x00\x01", 3)}},
        "ends inside a sample"},
+      // docs/decode.md "sr": a gap in the numbered entries is an error, not the data's end.
+      {"gap.sr",
+       {{"version", "2"},
+        {"metadata", meta},
+        {"logic-1-1", "\x01\x00"},
+        {"logic-1-4", "\x01"},
+        {"logic-1-3", "\x01"}},
+       "'logic-1-2' is missing but 'logic-1-3' is there"},
+      {"no-first.sr",
+       {{"version", "2"}, {"metadata", meta}, {"logic-1", "\x01\x00"}, {"logic-1-2", "\x01"}},
+       "'logic-1-1' is missing but 'logic-1-2' is there"},
   };
   for (const Case& c : cases) {
     testing::write_zip(dir / c.name, c.entries);

@@ -149,6 +149,18 @@ TEST_F(DecodeBadInput, NoFrameAtAll) {
 
 TEST_F(DecodeBadInput, MissingFileArgument) { expect_failure({}, {"FILE"}); }
 
+// docs/decode.md "sr": the data entries are concatenated in order, and a gap is an error.
+// Stopping at it decoded the part before the gap only, exit 0, as if it were all.
+TEST_F(DecodeBadInput, SigrokSessionWithAMissingDataEntry) {
+  const std::string samples = oversample(line_, 2);
+  const std::size_t half = samples.size() / 2;
+  write_zip(dir_ / "gap.sr", {{"version", "2"},
+                              {"metadata", sr_metadata("8 MHz", {"RX"})},
+                              {"logic-1-1", samples.substr(0, half)},
+                              {"logic-1-3", samples.substr(half)}});
+  expect_failure({path("gap.sr")}, {"gap.sr", "'logic-1-2' is missing", "'logic-1-3'"});
+}
+
 // docs/decode.md "Exit status": 0 only when the listing was written. Stdout on a full disk
 // (/dev/full) or closed loses it: exit 1 with the reason, never 0 with nothing said.
 TEST_F(DecodeBadInput, OutputThatCannotBeWritten) {
