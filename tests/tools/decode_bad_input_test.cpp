@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run_sercon.hpp"
@@ -69,6 +70,26 @@ TEST_F(DecodeBadInput, MalformedCommandLineIsStatusTwo) {
   EXPECT_EQ(run_sercon({}).status, 2);  // no subcommand
   EXPECT_EQ(run_sercon({"decode", "--rate", "4M", path("missing.bits")}).status, 1);
   EXPECT_EQ(run_sercon({"decode", "--help"}).status, 0);
+}
+
+// The same for a mistyped subcommand or an option before any: the line names the word
+// (CLI11 alone said only "A subcommand is required"); CLI11's other messages stay.
+TEST_F(DecodeBadInput, UnknownSubcommandIsNamed) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"decod", path("good.bits")}, "sercon: error: unknown subcommand 'decod'"},
+      {{"bogus"}, "sercon: error: unknown subcommand 'bogus'"},
+      {{"--bogus"}, "sercon: error: unknown option '--bogus' and no subcommand"},
+      {{}, "sercon: error: A subcommand is required"},
+      {{"decode", "--bogus", path("good.bits")}, "not expected: --bogus"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const RunResult r = run_sercon(args);
+    EXPECT_EQ(r.status, 2) << expected;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << "stderr: " << r.err;
+    if (!args.empty() && args[0] != "decode") {
+      EXPECT_NE(r.err.find("(subcommands: decode)"), std::string::npos) << r.err;
+    }
+  }
 }
 
 TEST_F(DecodeBadInput, WrongFormatContent) {
