@@ -2,6 +2,9 @@
 // 1 µs"), with exact edges (docs/timing.md, "DIV_CLK").
 #include <gtest/gtest.h>
 
+#include <initializer_list>
+#include <vector>
+
 #include "sercon/chip/div_clk.hpp"
 #include "timing_bench.hpp"
 
@@ -38,6 +41,13 @@ struct DivClkBench : TimingBench {
       out.push_back({s + kP * mclk(), idle});
     }
     return out;
+  }
+  // One mode-1 pulse at cycle time `c` of each of `cycles`, as pulses() gives them.
+  std::vector<PinLog::Change> pulses_in(std::initializer_list<std::int64_t> cycles,
+                                        std::int64_t c) const {
+    std::vector<Time> starts;
+    for (std::int64_t k : cycles) starts.push_back(at_cycle_time(k, c));
+    return pulses(starts, Level::High);
   }
   PinLog pin_log;
 };
@@ -143,9 +153,7 @@ TEST(DivClk, ModeOneEveryNthCycleFromTheFirst) {
   b.chip.reg_write(kDivCtrl, kDivclkmode | 3);
   b.start_master();
   b.run_to(b.cycle_start(10) - 1);
-  std::vector<Time> starts;
-  for (std::int64_t k : {0, 3, 6, 9}) starts.push_back(b.at_cycle_time(k, 40));
-  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+  EXPECT_EQ(b.pin_log.changes, b.pulses_in({0, 3, 6, 9}, 40));
 }
 
 // Delta spec 2.7: "... or after the first cycle when NDIVCLK is being programmed to a value
@@ -158,9 +166,7 @@ TEST(DivClk, ModeOneProgrammedWhileRunning) {
   b.start_master();
   b.write_at(b.cycle_start(4) + 100 * kMicrosecond, kDivCtrl, kDivclkmode | 2);
   b.run_to(b.cycle_start(10) - 1);
-  std::vector<Time> starts;
-  for (std::int64_t k : {5, 7, 9}) starts.push_back(b.at_cycle_time(k, 200));
-  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+  EXPECT_EQ(b.pin_log.changes, b.pulses_in({5, 7, 9}, 200));
 }
 
 // Delta spec 2.7 (DIVCLKMODE = 1): "NDIVCLK 0: Never becomes active ... The output DIV_CLK
@@ -179,9 +185,7 @@ TEST(DivClk, ModeOneReprogrammingWithinACycleRestartsTheSequence) {
   b.write_at(b.cycle_start(1) + 100 * kMicrosecond, kDivCtrl, kDivclkmode);
   b.write_at(b.cycle_start(1) + 150 * kMicrosecond, kDivCtrl, kDivclkmode | 3);
   b.run_to(b.cycle_start(10) - 1);
-  std::vector<Time> starts;
-  for (std::int64_t k : {0, 2, 5, 8}) starts.push_back(b.at_cycle_time(k, 40));
-  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+  EXPECT_EQ(b.pin_log.changes, b.pulses_in({0, 2, 5, 8}, 40));
 }
 
 // Decision (docs/timing.md "DIV_CLK"): mode 0 restarts mode 1's sequence as NDIVCLK = 0
@@ -196,9 +200,7 @@ TEST(DivClk, ModeOneRestartsAfterModeZeroWithinACycleButNotOnANewCount) {
   b.write_at(b.cycle_start(1) + 150 * kMicrosecond, kDivCtrl, kDivclkmode | 3);
   b.write_at(b.cycle_start(2) + 100 * kMicrosecond, kDivCtrl, kDivclkmode | 2);
   b.run_to(b.cycle_start(7) - 1);
-  std::vector<Time> starts;
-  for (std::int64_t k : {0, 2, 4, 6}) starts.push_back(b.at_cycle_time(k, 40));
-  EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
+  EXPECT_EQ(b.pin_log.changes, b.pulses_in({0, 2, 4, 6}, 40));
 }
 
 // Delta spec 2.7: DIVCLKMODE is new in the 816; the 410B has mode 0 only (the bit is not
