@@ -8,6 +8,15 @@
 namespace sercon::ring {
 namespace {
 
+// The slave count of the one-config constructor, refused here so that the message names the
+// count asked for (not the empty vector a larger count would have to become).
+std::size_t checked_slave_count(std::size_t count) {
+  if (count == 0 || count > Ring::kMaxSlaves) {
+    throw std::invalid_argument("Ring: " + std::to_string(count) + " slaves; a ring has 1..254");
+  }
+  return count;
+}
+
 std::uint16_t mask_of(std::string_view field, chip::Variant variant) {
   const auto f = chip::find_field(field, variant);
   if (!f) throw std::logic_error("Ring: register field " + std::string(field) + " unknown");
@@ -50,8 +59,7 @@ Ring::Ring(sim::Scheduler& scheduler, const chip::ChipConfig& master,
 Ring::Ring(sim::Scheduler& scheduler, const chip::ChipConfig& master, const chip::ChipConfig& slave,
            std::size_t slave_count, const RingOptions& options)
     : Ring(scheduler, master,
-           std::vector<chip::ChipConfig>(slave_count <= kMaxSlaves ? slave_count : 0, slave),
-           options) {}
+           std::vector<chip::ChipConfig>(checked_slave_count(slave_count), slave), options) {}
 
 chip::Chip& Ring::slave(std::size_t n) {
   if (n < 1 || n > slave_count()) {

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ring_bench.hpp"
@@ -265,6 +266,24 @@ TEST(Ring, RefusesImpossibleRings) {
   EXPECT_THROW(ok.slave(3), std::out_of_range);
   EXPECT_THROW(ok.fibre(3), std::out_of_range);
   EXPECT_THROW(ok.node(3), std::out_of_range);
+}
+
+// docs "Ring": the refusal names the slave count asked for; a count above 254 was reported
+// as "0 slaves" (review wt-a4).
+TEST(Ring, TooManySlavesIsReportedWithTheCountAskedFor) {
+  sim::Scheduler s;
+  try {
+    Ring(s, ChipConfig{}, ChipConfig{}, 0);
+    ADD_FAILURE() << "0 slaves accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("0 slaves"), std::string::npos) << e.what();
+  }
+  try {
+    Ring(s, ChipConfig{}, ChipConfig{}, 255);
+    ADD_FAILURE() << "255 slaves accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("255 slaves"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
