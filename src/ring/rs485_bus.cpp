@@ -46,6 +46,9 @@ chip::LineListener& Rs485Bus::driver(std::size_t node) {
 }
 
 std::size_t Rs485Bus::attach(chip::SerialUnit& unit, unsigned txd_pin) {
+  if (txd_pin < 1 || txd_pin > chip::SerialUnit::kTxdCount) {  // before the node is added
+    throw std::out_of_range("TxD" + std::to_string(txd_pin) + ": the chip has TxD1..TxD6");
+  }
   const std::size_t n = add_node(unit.rxd());
   unit.connect_txd(txd_pin, driver(n));
   return n;

@@ -146,6 +146,19 @@ TEST(Rs485Bus, RefusesBadInput) {
   }
 }
 
+// attach(unit, txd_pin): a pin outside TxD1..6 is refused before anything changes; the bus
+// keeps no receiver-only node from the failed call (review wt-a4).
+TEST(Rs485Bus, AFailedAttachLeavesNoHalfAttachedNode) {
+  sim::Scheduler s;
+  Rs485Bus bus(s);
+  chip::Chip a(s, chip::ChipConfig{});
+  EXPECT_THROW(bus.attach(*a.unit<chip::SerialUnit>(), 7), std::out_of_range);
+  EXPECT_THROW(bus.attach(*a.unit<chip::SerialUnit>(), 0), std::out_of_range);
+  EXPECT_EQ(bus.node_count(), 0u) << "a refused attach left a node on the bus";
+  EXPECT_EQ(bus.attach(*a.unit<chip::SerialUnit>(), 6), 0u);
+  EXPECT_EQ(bus.node_count(), 1u);
+}
+
 // The bus arbitrates drivers at the moment they drive (rs485_bus.hpp): what a transmitter
 // announces goes through a SettledLine (docs "Per telegram, not per bit"), so a telegram
 // announced for later and overtaken before it starts (here by a reset of its chip, which
