@@ -31,6 +31,12 @@ Rs485Bus::~Rs485Bus() {
 }
 
 std::size_t Rs485Bus::add_node(chip::LineListener& receiver) {
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].receiver == &receiver) {  // it would hear its own telegrams
+      throw std::invalid_argument("Rs485Bus: the receiver is node " + std::to_string(i) +
+                                  " already; a node does not hear itself");
+    }
+  }
   const std::size_t n = nodes_.size();
   nodes_.push_back(Node{&receiver, std::make_unique<Driver>(*this, n), true});
   receiver.line_condition(scheduler_.now(), LineCondition::Dark, 0);

@@ -159,6 +159,37 @@ TEST(Rs485Bus, AFailedAttachLeavesNoHalfAttachedNode) {
   EXPECT_EQ(bus.node_count(), 1u);
 }
 
+// Docs "RS-485 bus": a node does not hear itself. The same unit (the same receiver)
+// attached a second time would hear its own telegram through its other node: refused with
+// std::invalid_argument, the bus unchanged, and the sender still does not hear itself
+// (review wt-a4).
+TEST(Rs485Bus, AttachingTheSameUnitTwiceIsRefused) {
+  sim::Scheduler s;
+  Rs485Bus bus(s);
+  std::vector<std::unique_ptr<chip::Chip>> chips;
+  for (int i = 0; i < 2; ++i) {
+    chips.push_back(std::make_unique<chip::Chip>(s, chip::ChipConfig{}));
+    chip::Chip& c = *chips.back();
+    c.reg_write(0x01, static_cast<std::uint16_t>(c.reg_read(0x01) & ~(1u << 3)));  // REPON 0
+    c.reg_write(0x02, 0x0041);                                                     // TxD1 on, light
+  }
+  chip::SerialUnit& a = *chips[0]->unit<chip::SerialUnit>();
+  Ear ear_a(*chips[0]);
+  Ear ear_b(*chips[1]);
+  bus.attach(a);
+  bus.attach(*chips[1]->unit<chip::SerialUnit>());
+  EXPECT_THROW(bus.attach(a), std::invalid_argument);
+  EXPECT_THROW(bus.attach(a, 2), std::invalid_argument);
+  EXPECT_THROW(bus.add_node(a.rxd()), std::invalid_argument);
+  EXPECT_EQ(bus.node_count(), 2u);
+  const Time t = a.bit_period();
+  const Time end = a.send(100 * t, 0x05, kData);
+  s.run_until(end + 1000 * t);
+  EXPECT_TRUE(ear_a.heard.empty()) << "the sender heard its own telegram";
+  ASSERT_EQ(ear_b.heard.size(), 1u);
+  EXPECT_TRUE(ear_b.heard[0].frame.ok());
+}
+
 // The bus arbitrates drivers at the moment they drive (rs485_bus.hpp): what a transmitter
 // announces goes through a SettledLine (docs "Per telegram, not per bit"), so a telegram
 // announced for later and overtaken before it starts (here by a reset of its chip, which

@@ -31,9 +31,11 @@ class Rs485Bus {
   Rs485Bus& operator=(const Rs485Bus&) = delete;
 
   // A node: `receiver` hears the bus; driver(node) is where its transmitter delivers.
+  // std::invalid_argument for a receiver that is a node already (it would hear itself).
   std::size_t add_node(chip::LineListener& receiver);
   chip::LineListener& driver(std::size_t node);
-  // add_node(unit.rxd()) with the unit's TxD `txd_pin` driving the bus.
+  // add_node(unit.rxd()) with the unit's TxD `txd_pin` driving the bus; a pin outside 1..6
+  // (std::out_of_range) or a unit attached already is refused before anything changes.
   std::size_t attach(chip::SerialUnit& unit, unsigned txd_pin = 1);
 
   std::size_t node_count() const { return nodes_.size(); }
