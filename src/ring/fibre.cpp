@@ -38,8 +38,20 @@ Fibre::~Fibre() {
 }
 
 void Fibre::connect(chip::LineListener& output) {
+  chip::LineListener* const old = output_;
   output_ = &output;
+  // The receiver it leaves has no signal any more, as after a break. Switched first: what
+  // the old receiver is told may come back round into this fibre.
+  if (old != nullptr && old != &output) {
+    old->line_condition(scheduler_.now(), LineCondition::Dark, 0);
+  }
   tell_far_end();
+}
+
+void Fibre::disconnect() {
+  chip::LineListener* const old = output_;
+  output_ = nullptr;
+  if (old != nullptr) old->line_condition(scheduler_.now(), LineCondition::Dark, 0);
 }
 
 void Fibre::Input::line_condition(sim::Time at, LineCondition condition, sim::Time period) {

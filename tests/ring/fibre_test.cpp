@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -266,6 +267,69 @@ TEST(Fibre, RestoredMidTelegramTheFarEndSeesIdle) {
   EXPECT_EQ(far.events.back().condition, LineCondition::Idle);
   EXPECT_EQ(far.events.back().period, 62'500);
   EXPECT_EQ(far.events.back().at, 10 * 62'500);
+}
+
+// Datasheet Table 1 L_ERRN: "goes low ... when the receive signal is missing". A receiver
+// whose fibre is taken away (disconnect(), or the fibre connected to another receiver) sees
+// Dark from that moment, as after a break, and raises FIBBR (review wt-a4).
+enum class TakeAway { Break, Disconnect, ConnectElsewhere };
+bool fibbr_after(TakeAway how) {
+  sim::Scheduler s;
+  chip::Chip rx(s, chip::ChipConfig{});
+  chip::Chip other(s, chip::ChipConfig{});
+  auto& unit = *rx.unit<chip::SerialUnit>();
+  const Time t = unit.bit_period();
+  Fibre f(s, 1.0);
+  f.connect(unit.rxd());
+  f.input().line_condition(0, LineCondition::Idle, t);
+  s.run_until(1000 * t);
+  EXPECT_FALSE(rx.reg_read(0x02) & (1u << 13));  // FIBBR clear while the fill arrives
+  switch (how) {
+    case TakeAway::Break:
+      f.break_now();
+      break;
+    case TakeAway::Disconnect:
+      f.disconnect();
+      break;
+    case TakeAway::ConnectElsewhere:
+      f.connect(other.unit<chip::SerialUnit>()->rxd());
+      break;
+  }
+  s.run_until(2000 * t);  // FIBBRTIM resets to 255 bit times
+  return (rx.reg_read(0x02) & (1u << 13)) != 0;
+}
+
+TEST(Fibre, AReceiverWhoseFibreIsTakenAwaySeesTheSignalMissing) {
+  EXPECT_TRUE(fibbr_after(TakeAway::Break));  // control
+  EXPECT_TRUE(fibbr_after(TakeAway::Disconnect)) << "disconnect(): RxD keeps the idle fill";
+  EXPECT_TRUE(fibbr_after(TakeAway::ConnectElsewhere))
+      << "connect() while connected: the first receiver keeps the idle fill";
+}
+
+// The receiver left is told Dark at the moment it is left; connecting the same receiver
+// again is no leaving.
+TEST(Fibre, TheReceiverLeftIsToldDarkNow) {
+  sim::Scheduler s;
+  Fibre f(s, 0.0);
+  Recorder a(s);
+  Recorder b(s);
+  f.connect(a);
+  f.input().line_condition(0, LineCondition::Idle, 62'500);
+  s.run_until(100'000);
+  f.connect(a);  // the same receiver: told the present condition again, not Dark
+  ASSERT_FALSE(a.events.empty());
+  EXPECT_EQ(a.events.back().condition, LineCondition::Idle);
+  f.connect(b);
+  EXPECT_EQ(a.events.back().condition, LineCondition::Dark);
+  EXPECT_EQ(a.events.back().at, 100'000);
+  EXPECT_EQ(b.events.back().condition, LineCondition::Idle);
+  s.run_until(200'000);
+  f.disconnect();
+  EXPECT_EQ(b.events.back().condition, LineCondition::Dark);
+  EXPECT_EQ(b.events.back().at, 200'000);
+  const std::size_t after = b.events.size();
+  f.disconnect();  // nothing left to tell
+  EXPECT_EQ(b.events.size(), after);
 }
 
 }  // namespace

@@ -31,9 +31,11 @@ class Fibre {
   // Where the transmitter (a chip's TxD, SerialUnit::connect_txd) delivers.
   chip::LineListener& input() { return input_; }
   // The receiver at the far end (a chip's rxd()); it is told the far end's present
-  // condition at once. It must outlive the connection (or be disconnected first).
+  // condition at once. It must outlive the connection (or be disconnected first). The
+  // receiver a fibre leaves (disconnect(), or connect() to another) is told Dark at now: its
+  // signal is missing, as after a break.
   void connect(chip::LineListener& output);
-  void disconnect() { output_ = nullptr; }
+  void disconnect();
 
   double length_m() const { return length_m_; }
   sim::Time delay() const { return delay_; }
