@@ -53,8 +53,10 @@ void TxdOutputs::tell_line(LineListener& listener) const {
 void TxdOutputs::connect(unsigned pin, LineListener& listener) {
   unit_.receiver().absorb_lazy();
   Output& out = outputs_[index_of_pin(pin)];
+  LineListener* const replaced = out.listener;
   out.listener = &listener;
   find_lone_follower();
+  if (replaced != &listener) tell_left_dark(replaced);
   const View& v = out.view;
   if (v.mode == Mode::Line) {
     tell_line(listener);
@@ -65,8 +67,22 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
 
 void TxdOutputs::disconnect(unsigned pin) {
   unit_.receiver().absorb_lazy();
-  outputs_[index_of_pin(pin)].listener = nullptr;
+  Output& out = outputs_[index_of_pin(pin)];
+  LineListener* const left = out.listener;
+  out.listener = nullptr;
   find_lone_follower();
+  tell_left_dark(left);
+}
+
+// A listener taken off a pin is no longer lit by this chip: Dark from now (unless another
+// pin still drives it). Called after the pin is switched: what it is told may come back
+// round to this line.
+void TxdOutputs::tell_left_dark(LineListener* left) {
+  if (left == nullptr) return;
+  for (const Output& o : outputs_) {
+    if (o.listener == left) return;
+  }
+  left->line_condition(unit_.chip().scheduler().now(), LineCondition::Dark, 0);
 }
 
 void TxdOutputs::find_lone_follower() {

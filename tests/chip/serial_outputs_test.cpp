@@ -18,6 +18,7 @@ using sim::Level;
 using sim::Time;
 using testing::kPoltxd;
 using testing::kSerCtrl;
+using testing::kSerMode;
 using testing::kTmode0;
 using testing::kTmode1;
 using testing::kTmode2;
@@ -217,6 +218,71 @@ TEST(serial_TxdOutputs, AListenerJoiningInsideACallbackIsToldTheBurstOnce) {
   b.run_to(end + 20 * t);
   ASSERT_TRUE(hook.done);
   EXPECT_EQ(late.starts, (std::vector<Time>{10 * t}));
+}
+
+// A listener taken off a TxD pin (disconnect_txd, or connect_txd of another listener to the
+// same pin) is no longer lit by the chip: it is told Dark at once, and the receiver behind
+// it raises FIBBR, as when the pin goes to high impedance (TXOE bit 0 = 0, the control)
+// (review wt-a4).
+enum class Unplug { Txoe, Disconnect, ConnectOther };
+bool far_fibbr_after(Unplug how) {
+  sim::Scheduler s;
+  Chip tx(s, ChipConfig{});
+  Chip rx(s, ChipConfig{});
+  tx.reg_write(kSerMode, static_cast<std::uint16_t>(tx.reg_read(kSerMode) & ~testing::kRepon));
+  tx.reg_write(kSerCtrl, static_cast<std::uint16_t>(kTxoe1 | kTxLight));  // the own idle fill
+  auto& unit = *tx.unit<SerialUnit>();
+  const Time t = unit.bit_period();
+  LineRecorder other(s);
+  unit.connect_txd(1, rx.unit<SerialUnit>()->rxd());
+  s.run_until(1000 * t);
+  EXPECT_FALSE(rx.reg_read(kSerCtrl) & (1u << 13));
+  switch (how) {
+    case Unplug::Txoe:
+      tx.reg_write(kSerCtrl, kTxLight);
+      break;
+    case Unplug::Disconnect:
+      unit.disconnect_txd(1);
+      break;
+    case Unplug::ConnectOther:
+      unit.connect_txd(1, other);
+      break;
+  }
+  s.run_until(2000 * t);
+  return (rx.reg_read(kSerCtrl) & (1u << 13)) != 0;
+}
+
+TEST(serial_TxdOutputs, AFibreTakenOffATxdPinGoesDark) {
+  EXPECT_TRUE(far_fibbr_after(Unplug::Txoe));  // control
+  EXPECT_TRUE(far_fibbr_after(Unplug::Disconnect)) << "disconnect_txd: the listener stays lit";
+  EXPECT_TRUE(far_fibbr_after(Unplug::ConnectOther))
+      << "connect_txd on a connected pin: the first listener stays lit";
+}
+
+// The listener left is told Dark at the moment it leaves; one still driven by another pin,
+// or connected again to the same pin, is not.
+TEST(serial_TxdOutputs, AListenerLeftIsToldDarkUnlessStillDriven) {
+  SerialBench b;
+  b.chip->reg_write(kSerCtrl, static_cast<std::uint16_t>(kTxoe1 | (1u << 1) | kTxLight));
+  const Time t = b.period();
+  LineRecorder shared(b.scheduler);
+  b.unit.connect_txd(2, shared);
+  b.run_to(100 * t);
+  b.unit.connect_txd(1, b.txd1);  // the same listener again
+  ASSERT_FALSE(b.txd1.events.empty());
+  EXPECT_NE(b.txd1.events.back().condition, LineCondition::Dark);
+  b.unit.connect_txd(1, shared);  // txd1 replaced; shared now on TxD1 and TxD2
+  b.run_to(100 * t);
+  EXPECT_EQ(b.txd1.events.back().condition, LineCondition::Dark);
+  EXPECT_EQ(b.txd1.events.back().at, 100 * t);
+  b.run_to(200 * t);
+  b.unit.disconnect_txd(2);  // still driven by TxD1
+  b.run_to(200 * t);
+  EXPECT_NE(shared.events.back().condition, LineCondition::Dark);
+  b.unit.disconnect_txd(1);
+  b.run_to(200 * t);
+  EXPECT_EQ(shared.events.back().condition, LineCondition::Dark);
+  EXPECT_EQ(shared.events.back().at, 200 * t);
 }
 
 }  // namespace

@@ -121,7 +121,8 @@ class SerialUnit : public ChipUnit {
   void set_lazy_hops(bool on);
   std::uint64_t lazy_hops_taken() const;  // bursts passed on lazily so far
   // TxDn (n = 1..6) -> a fibre / bus input. The listener is told the present condition at
-  // once. Replaces an earlier listener on that pin. std::out_of_range for other n.
+  // once. Replaces an earlier listener on that pin; the listener replaced (or disconnected)
+  // is told Dark at once, unless another pin still drives it. std::out_of_range for other n.
   void connect_txd(unsigned pin, LineListener& listener);
   void disconnect_txd(unsigned pin);
 

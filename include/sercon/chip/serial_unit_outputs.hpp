@@ -26,7 +26,9 @@ class TxdOutputs {
   TxdOutputs(const TxdOutputs&) = delete;
   TxdOutputs& operator=(const TxdOutputs&) = delete;
 
-  void connect(unsigned pin, LineListener& listener);  // pin 1..6
+  // pin 1..6. A listener replaced or disconnected is told Dark at now (unless another pin
+  // still drives it).
+  void connect(unsigned pin, LineListener& listener);
   void disconnect(unsigned pin);
 
   // Announcements of the serial line (own telegrams, idle fill or the repeated signal) at
@@ -52,6 +54,7 @@ class TxdOutputs {
   LineCondition line_condition_now(sim::Time* period) const;
 
  private:
+  void tell_left_dark(LineListener* left);  // a listener that left a pin (nullptr: none)
   enum class Mode : std::uint8_t { HighZ, Port, Dark, Light, ZeroBits, Line };
   struct View {  // what a listener is shown
     Mode mode = Mode::HighZ;
