@@ -56,6 +56,7 @@ std::size_t Rs485Bus::attach(chip::SerialUnit& unit, unsigned txd_pin) {
     throw std::out_of_range("TxD" + std::to_string(txd_pin) + ": the chip has TxD1..TxD6");
   }
   const std::size_t n = add_node(unit.rxd());
+  nodes_[n].driver->only_own(unit.transmitter());
   unit.connect_txd(txd_pin, driver(n));
   return n;
 }
@@ -75,7 +76,12 @@ void Rs485Bus::Driver::Now::line_condition(sim::Time at, LineCondition, sim::Tim
   bus_.release(node_, at);
 }
 
-void Rs485Bus::Driver::Now::line_burst(const LineBurst& burst) { bus_.drive(node_, burst); }
+void Rs485Bus::Driver::Now::line_burst(const LineBurst& burst) {
+  // The driver is enabled like IDLE: a burst that starts while the node's transmitter is not
+  // sending (a repeated telegram) leaves the bus undriven by this node.
+  if (own_ != nullptr && !own_->sending_at(burst.start)) return bus_.release(node_, burst.start);
+  bus_.drive(node_, burst);
+}
 
 void Rs485Bus::keep(sim::Scheduler::EventId id) {
   if (events_.size() > 64) {

@@ -218,5 +218,49 @@ TEST(Rs485Bus, ATelegramTakenBackBeforeItStartsNeverReachesTheBus) {
   }
 }
 
+// Docs "RS-485 bus": a node's transmitter drives the bus only while it sends a telegram (its
+// driver is enabled like IDLE); datasheet Table 1 IDLE: "When transmitting own data IDLE is
+// 0". A node left with REPON = 1 repeats what it hears onto its TxD while its IDLE stays
+// high: the bus does not carry the repeated telegram (it would collide with the sender's,
+// two bit times later). Control: REPON = 0 (review wt-a4).
+TEST(Rs485Bus, ARepeatedTelegramIsNotDrivenOntoTheBusWhileIdleIsHigh) {
+  for (const bool repon : {false, true}) {
+    BusBench b;
+    chip::Chip& c1 = *b.chips[1];
+    if (repon) c1.reg_write(0x01, static_cast<std::uint16_t>(c1.reg_read(0x01) | (1u << 3)));
+    const Time t = b.unit(0).bit_period();
+    const Time end = b.unit(0).send(100 * t, 0x05, kData);
+    bool idle_low = false;
+    for (Time at = 100 * t; at < end + 10 * t; at += t / 2) {
+      b.s.run_until(at);
+      idle_low = idle_low || c1.pin(chip::Pin::IDLE).level() == sim::Level::Low;
+    }
+    b.s.run_until(end + 1000 * t);
+    EXPECT_FALSE(idle_low) << "REPON " << repon;  // node 1 never sends own data
+    EXPECT_EQ(b.bus.collisions(), 0u) << "REPON " << repon;
+    ASSERT_EQ(b.ear(2).heard.size(), 1u) << "REPON " << repon;
+    EXPECT_TRUE(b.ear(2).heard[0].frame.ok()) << "REPON " << repon << ": node 2 heard error class "
+                                              << wire::to_string(b.ear(2).heard[0].frame.error);
+    EXPECT_TRUE(b.ear(0).heard.empty()) << "REPON " << repon << ": the sender heard a repeat";
+  }
+}
+
+// With REPON = 1 a node still drives its own telegrams: the repeater's bursts are left off
+// the bus, the node's own are carried.
+TEST(Rs485Bus, ANodeThatRepeatsStillDrivesItsOwnTelegrams) {
+  BusBench b;
+  chip::Chip& c1 = *b.chips[1];
+  c1.reg_write(0x01, static_cast<std::uint16_t>(c1.reg_read(0x01) | (1u << 3)));
+  const Time t = b.unit(1).bit_period();
+  const Time end = b.unit(1).send(100 * t, 0x06, kData);
+  b.s.run_until(end + 1000 * t);
+  EXPECT_EQ(b.bus.collisions(), 0u);
+  for (int i : {0, 2}) {
+    ASSERT_EQ(b.ear(i).heard.size(), 1u) << i;
+    EXPECT_TRUE(b.ear(i).heard[0].frame.ok()) << i;
+    EXPECT_EQ(b.ear(i).heard[0].frame.address, 0x06) << i;
+  }
+}
+
 }  // namespace
 }  // namespace sercon::ring

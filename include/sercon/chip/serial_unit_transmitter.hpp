@@ -26,6 +26,8 @@ class SerialTransmitter final : private LazyPin::Source {
   void release();
   sim::Time send(sim::Time start, std::uint8_t address, std::span<const std::uint8_t> data);
   sim::Time free_at() const { return free_at_; }
+  // An own telegram is on the line at `t` (IDLE low; the RS-485 driver is enabled).
+  bool sending_at(sim::Time t) const { return !level_at(t); }
 
  private:
   // LazyPin::Source: IDLE is high unless an own telegram is on the line.

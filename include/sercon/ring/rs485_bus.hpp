@@ -1,6 +1,7 @@
 // An RS-485 bus (datasheet §1: "bus topologies with RS-485 signals are supported (Fig. 4)"):
 // every node on one line, no repeaters. Decisions (docs/serial-and-ring.md, "RS-485 bus"):
-// - A node drives the bus only while it sends a telegram (its driver enabled like IDLE);
+// - A node drives the bus only while it sends a telegram (its driver enabled like IDLE): a
+//   telegram its repeater passes on (REPON = 1) is not driven onto the bus;
 //   between telegrams nobody drives and receivers see Dark (fail-safe level, no edges):
 //   FIBBR on a bus means "bus silent". Conditions a node's TxD announces are not carried.
 // - A telegram reaches every other node after the bus delay; a node does not hear itself.
@@ -17,6 +18,7 @@
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/serial_unit_transmitter.hpp"
 #include "sercon/chip/settled_line.hpp"
 #include "sercon/sim/scheduler.hpp"
 
@@ -52,6 +54,9 @@ class Rs485Bus {
   class Driver final : public chip::LineListener {
    public:
     Driver(Rs485Bus& bus, std::size_t node) : now_(bus, node), settled_(bus.scheduler_, now_) {}
+    // A chip's node: only bursts that start while `own` sends an own telegram are driven
+    // (the driver is enabled like IDLE); a repeated telegram is not.
+    void only_own(const chip::SerialTransmitter& own) { now_.own_ = &own; }
     // std::invalid_argument for a time before now or a burst without bits or bit period;
     // a later announcement supersedes what was announced for its time and later.
     void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
@@ -68,6 +73,8 @@ class Rs485Bus {
      private:
       Rs485Bus& bus_;
       std::size_t node_;
+      const chip::SerialTransmitter* own_ = nullptr;  // nullptr: every burst is driven
+      friend class Driver;
     };
     Now now_;
     chip::SettledLine settled_;
