@@ -177,7 +177,10 @@ void TelegramProcessor::finish_receive(const wire::DecodedFrame& frame) {
   try {
     outcome = receive_.finish(item, frame, port());
   } catch (const ListFault& f) {
-    list_fault(f);
+    // Doc §2 "Bad lists": a container or buffer beyond the RAM stops the list for the rest
+    // of the cycle, though the walk moved on when the address came (inside a report's
+    // handler: no interest_changed()).
+    list_.abort(f);
     return;
   }
   interrupts_.raise(Irq::Rend);

@@ -156,5 +156,62 @@ TEST_F(BadList410B, PointerIntoTheMissingUpperKilowordStopsTheList) {
   EXPECT_EQ(tp().list_faults(), 2u);
 }
 
+// A fault found in a receive telegram's containers at its detection, after the walk moved on.
+//
+// docs/telegram-processing.md §2 "Bad lists": "Any of these stops the list for the rest of
+// the cycle and counts a list fault: ... a pointer, header word, container or buffer beyond
+// the RAM ... The telegram being assembled is not sent (or, for a receive, its header not
+// updated)." A master alone on a 1 µs loop at 16 Mbit/s: it sends to itself (address 5) at
+// 20, a receive header takes the telegram, then a transmit header (address 6, 60) and an end
+// marker (90). The receive container's buffer runs beyond the RAM (found at the detection,
+// after the walk moved on to the transmit header): the address-6 telegram and INT_ENDMK must
+// not come in that cycle. Control: the same list with the buffer inside the RAM.
+class ReceiveFault : public ::testing::Test {
+ protected:
+  ReceiveFault() : ring(1, 1'000'000) {}
+
+  void start(std::uint16_t rx) {
+    Chip& m = ring.chip(0);
+    words(m, 0, {0x040, 0x040});
+    transmit_header(m, 0x040, 0x5005, 20, 2, rx);
+    words(m, 0x044, {0x8002, 0x1111, 0x2222});
+    receive_header(m, rx, 0x0805, 0, 2, 0x060);  // ACHK, address 5, TCHK = 0
+    words(m, rx + 5, {0x8002, 0});               // buffer at rx + 7, rx + 8
+    transmit_header(m, 0x060, 0x5006, 60, 1, 0x066);
+    words(m, 0x064, {0x8001, 0x6666});
+    end_marker(m, 0x066, 90);
+    ring.run_for(555'555);
+    t = timing_16mbit();
+    program_master(m, t, kTscyc, 4);
+    enable_transmission(m);
+    m.reg_write(kIntStat, 0xFFFF);
+    start_master(m);
+    ring.run_for(kTscyc * sim::kMicrosecond - sim::kMicrosecond);  // one cycle
+  }
+  std::size_t sent_to(std::uint8_t address) const {
+    std::size_t n = 0;
+    for (const Seen& s : ring.fibres[0]->seen)
+      if (s.address == address) ++n;
+    return n;
+  }
+
+  Ring ring;
+  Timing t;
+};
+
+TEST_F(ReceiveFault, BufferBeyondTheRamStopsTheRestOfTheList) {
+  start(0x7F8);  // buffer at 0x7FF and 0x800: beyond the RAM
+  ASSERT_EQ(ring.stations[0].tp->list_faults(), 1u);
+  EXPECT_EQ(sent_to(6), 0u) << "the list went on after the fault";
+  EXPECT_EQ(ring.chip(0).reg_read(kIntStat) & kIntEndmk, 0) << "INT_ENDMK";
+}
+
+TEST_F(ReceiveFault, ControlBufferInsideTheRamListGoesOn) {
+  start(0x050);
+  ASSERT_EQ(ring.stations[0].tp->list_faults(), 0u);
+  EXPECT_EQ(sent_to(6), 1u);
+  EXPECT_EQ(ring.chip(0).reg_read(kIntStat) & kIntEndmk, kIntEndmk);
+}
+
 }  // namespace
 }  // namespace sercon::chip

@@ -92,6 +92,10 @@ class TelegramList {
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
   // it had not been offered (its window may have closed meanwhile: then it is missed).
   void reclaim(const ListItem& item);
+  // A fault the client found outside the walk (in an accepted telegram's containers, at its
+  // detection): the list stops for the rest of the cycle, as for a fault found by the walk,
+  // and the client is told (list_fault).
+  void abort(const ListFault& fault) { this->fault(fault); }
 
  private:
   enum class State : std::uint8_t { Idle, Transmit, Receive, End };
