@@ -122,13 +122,17 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
     return;
   }
   if (match != TelegramList::Match::Accepted) return;
-  if (address_flag_phase() && item.has(telegram::kAchk)) flmdtadr_.set(regs_, true);
+  bool flag_set = false;
+  if (address_flag_phase() && item.has(telegram::kAchk)) {
+    flag_set = !flmdtadr_.on(regs_);
+    flmdtadr_.set(regs_, true);
+  }
   try {
     // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
     // Frames do not overlap and a detection comes before the next frame's start report,
     // so this is a guard, not a path the ring takes.
     if (receiving_) receive_missed(receiving_->item);
-    receiving_ = Receiving{item, start, false};
+    receiving_ = Receiving{item, start, false, flag_set};
     receiving_->val_cleared = receive_.begin(item);
   } catch (const ListFault& f) {
     receiving_.reset();
@@ -150,6 +154,9 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
 void TelegramProcessor::withdraw_mst() {
   const Receiving r = *receiving_;
   receiving_.reset();
+  // Delta spec 2.9: only an MDT with the drive's address requests an AT; an MST taken by a
+  // header for address 255 does not.
+  if (r.flag_set) flmdtadr_.set(regs_, false);
   try {
     receive_.withdraw(r.item, r.val_cleared);
   } catch (const ListFault& f) {

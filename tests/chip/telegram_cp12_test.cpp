@@ -42,8 +42,9 @@ class Cp12 : public ::testing::TestWithParam<Variant> {
   }
 
   // Starts the ring with the master sending `mdt_word0` in its MDT header; the slave (drive
-  // 1) answers at the time that puts its AT into the master's 100 µs window.
-  void start(std::uint16_t mdt_word0) {
+  // 1) answers at the time that puts its AT into the master's 100 µs window. Its MDT
+  // receive header's word 0 is `slave_rx_word0` (default: ACHK, TCHK, address 1).
+  void start(std::uint16_t mdt_word0, std::uint16_t slave_rx_word0 = 0x1801) {
     t = timing_2mbit();
     ring.run_for(7'777'777);
     first = ceil_to(ring.scheduler.now(), t.mclk());
@@ -68,7 +69,7 @@ class Cp12 : public ::testing::TestWithParam<Variant> {
     words(s, 0x000, {0x0100, 0x0100});
     transmit_header(s, 0x100, 0x5001, t1, 2, 0x107);
     words(s, 0x104, {0x8002, 0x0001, 0x0000});  // status bit 0: the drive is there
-    receive_header(s, 0x107, 0x1801, mdt_time, 2, 0x110);
+    receive_header(s, 0x107, slave_rx_word0, mdt_time, 2, 0x110);
     words(s, 0x10C, {0x8002, 0, 0, 0});
     end_marker(s, 0x110, 1000);
     enable_transmission(s);
@@ -159,6 +160,26 @@ TEST_P(Cp12, EntmtOffKeepsTheAtBackAndTheRequestPending) {
   ring.chip(1).reg_write(kTpCtrl, kEntmt);
   run_cycles(1);
   EXPECT_EQ(at_cycles(), std::vector<int>{3});
+}
+
+// An ACHK = 1 header for address 255 (TCHK = 0) is offered the next cycle's MST and sets
+// FLMDTADR before the MST is withdrawn at its detection (doc §3: "VAL is put back as it was
+// and the header waits again"; the header waits as if it had not been offered). No MDT ever
+// comes (the master's MDT header is idle), so the drive must not answer (delta spec 2.9:
+// it sends only when requested by an MDT with its address).
+TEST_P(Cp12, MstTakenByABroadcastHeaderDoesNotRequestAnAt) {
+  start(0x4000, 0x08FF);  // master: MDT header idle; slave: ACHK, TCHK = 0, address 255
+  run_cycles(3);
+  EXPECT_TRUE(at_cycles().empty());
+  EXPECT_FALSE(ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) << "FLMDTADR";
+}
+
+// Control: the slave's header for its own address; the MST is another address.
+TEST_P(Cp12, NoMdtRequestsNoAt) {
+  start(0x4000, 0x0801);
+  run_cycles(3);
+  EXPECT_TRUE(at_cycles().empty());
+  EXPECT_FALSE(ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) << "FLMDTADR";
 }
 
 INSTANTIATE_TEST_SUITE_P(Variants, Cp12, ::testing::Values(Variant::Sercon816, Variant::Sercon410B),

@@ -52,6 +52,9 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
     ListItem item;
     sim::Time start = 0;
     bool val_cleared = false;  // begin() cleared VAL (undone if it proves to be an MST)
+    // The offer set FLMDTADR, which was 0 before: put back if it proves to be an MST (the
+    // header waits as if it had not been offered).
+    bool flag_set = false;
   };
 
   bool master() const { return regmode_.on(regs_); }
