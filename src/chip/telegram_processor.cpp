@@ -59,6 +59,7 @@ void TelegramProcessor::reset(ResetCause) {
   list_.stop();
   mst_.stop();
   receiving_.reset();
+  flag_clear_start_.reset();
   scheduler_.cancel(tend_event_);
   scheduler_.cancel(rscend_event_);
   tend_event_ = {};
@@ -115,9 +116,14 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
   const TelegramList::Match match = list_.offer(start, address, item);
   if (match == TelegramList::Match::OtherAddress) {
     // Delta spec 2.9: the 410B forgets the request only when an MDT with another address
-    // comes; the 816 when it starts the answer.
+    // comes; the 816 when it starts the answer. An address-255 telegram may be an MST,
+    // which is no MDT: it is judged at its detection.
     if (address_flag_phase() && chip_.variant() == Variant::Sercon410B) {
-      flmdtadr_.set(regs_, false);
+      if (address == kMstAddress) {
+        flag_clear_start_ = start;
+      } else {
+        flmdtadr_.set(regs_, false);
+      }
     }
     return;
   }
@@ -143,6 +149,10 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
 void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   const wire::DecodedFrame& frame = telegram.frame;
   const bool current = receiving_ && receiving_->start == telegram.start;
+  if (flag_clear_start_ && *flag_clear_start_ == telegram.start) {
+    flag_clear_start_.reset();
+    if (!is_mst(frame)) flmdtadr_.set(regs_, false);  // an MDT to all drives: another address
+  }
   if (is_mst(frame)) {
     if (current) withdraw_mst();
     if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(serial_.bit_period()));
@@ -275,14 +285,16 @@ bool TelegramProcessor::wants_start(sim::Time start, std::uint8_t address) const
 }
 
 // What on_telegram would do: an MST always counts; any other telegram only when it is the
-// one being received.
+// one being received, or (410B) the address-255 telegram whose detection clears FLMDTADR.
 bool TelegramProcessor::wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const {
-  return is_mst(frame) || (receiving_ && receiving_->start == start);
+  return is_mst(frame) || (receiving_ && receiving_->start == start) ||
+         (flag_clear_start_ && *flag_clear_start_ == start);
 }
 
 // Only a waiting receive header (offer(), wants_start) or a telegram being received
 // (wants_telegram) makes a telegram other than an MST count; every change of either comes
-// with interest_changed() or inside a report's handler.
+// with interest_changed() or inside a report's handler. A pending 410B FLMDTADR clear
+// (flag_clear_start_) is only ever for an address-255 telegram, which is asked for anyway.
 bool TelegramProcessor::may_want_addressed() const {
   return list_.waits_for_telegram() || receiving_.has_value();
 }

@@ -182,6 +182,32 @@ TEST_P(Cp12, NoMdtRequestsNoAt) {
   EXPECT_FALSE(ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) << "FLMDTADR";
 }
 
+// Delta spec 2.9.2: "In the SERCON410B the flag (FLMDTADR) is reset only after a new MDT is
+// received including a different address than the expected one. A missing MDT does not
+// reset the flag causing AT's to be send multiple times." The drive's MDT header does not
+// check the time (ACHK, TCHK = 0), so in the cycles without MDT it still waits when the
+// next MST (address 255) comes: an MST is no MDT and must not clear the flag. The master
+// sends one MDT (send once) in cycle 0 and none in cycles 1 and 2.
+TEST_P(Cp12, UntimedMdtHeaderKeepsTheRequestUntilAnotherMdtAddress) {
+  start(0x4801, 0x0801);  // slave: ACHK, TCHK = 0, address 1
+  run_cycles(3);
+  const bool is816 = GetParam() == Variant::Sercon816;
+  // 816: one AT per MDT. 410B: the flag stays, so the AT goes out in cycles 1 and 2 too.
+  const std::vector<int> expected = is816 ? std::vector<int>{1} : std::vector<int>{1, 2};
+  EXPECT_EQ(at_cycles(), expected);
+  EXPECT_EQ((ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) != 0, !is816) << "FLMDTADR";
+}
+
+// Control: the same with the timed header (the MST is outside its window).
+TEST_P(Cp12, TimedMdtHeaderKeepsTheRequestUntilAnotherMdtAddress) {
+  start(0x4801, 0x1801);
+  run_cycles(3);
+  const bool is816 = GetParam() == Variant::Sercon816;
+  const std::vector<int> expected = is816 ? std::vector<int>{1} : std::vector<int>{1, 2};
+  EXPECT_EQ(at_cycles(), expected);
+  EXPECT_EQ((ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) != 0, !is816) << "FLMDTADR";
+}
+
 INSTANTIATE_TEST_SUITE_P(Variants, Cp12, ::testing::Values(Variant::Sercon816, Variant::Sercon410B),
                          [](const ::testing::TestParamInfo<Variant>& p) {
                            return p.param == Variant::Sercon816 ? "Sercon816" : "Sercon410B";

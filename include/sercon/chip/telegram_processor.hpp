@@ -114,6 +114,9 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   PassThroughServiceChannel pass_through_;
   ServiceChannelPort* port_ = &pass_through_;
   std::optional<Receiving> receiving_;
+  // 410B: the start of an address-255 telegram that came while an ACHK = 1 header for
+  // another address waited; FLMDTADR is cleared at its detection unless it is an MST.
+  std::optional<sim::Time> flag_clear_start_;
   sim::Scheduler::EventId tend_event_{};
   sim::Scheduler::EventId rscend_event_{};
   sim::Time rscend_at_ = 0;
