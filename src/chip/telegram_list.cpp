@@ -115,7 +115,14 @@ bool TelegramList::arm_receive(const ListItem& item) {
     client_.receive_missed(item);
     return false;
   }
-  window_opens_ = opens ? *opens : std::numeric_limits<sim::Time>::min();
+  // Armed after the step out of TRT - 2 (behind a later transmit header, say): the window
+  // still opened at that step, not when the header was read (doc §5).
+  if (opens) {
+    window_opens_ = *opens;
+  } else {
+    window_opens_ = time_base_.time_of_past_cycle_time(item.time - kWindowUs)
+                        .value_or(std::numeric_limits<sim::Time>::min());
+  }
   window_closes_ = *closes;
   window_judge_ = scheduler_.at(*closes + client_.start_report_delay(), [this] {
     window_judge_ = {};

@@ -386,5 +386,74 @@ TEST_F(Loopback, MstIsNeverAListTelegram) {
   EXPECT_FALSE(chip().reg_read(kIntStat) & kIntRend);
 }
 
+// A TCHK header armed late: the window's opening is not forgotten.
+//
+// docs/telegram-processing.md §5: a TCHK = 1 header takes a telegram when "its opening flag
+// began while the counter was between the step out of TRT − 2 and the step out of TRT + 2".
+// A header read after the step out of TRT − 2 (here: behind an idle transmit header due later)
+// must still refuse a telegram whose opening flag began before that step.
+//
+// A master alone on a 0.3 µs loop at 2 Mbit/s: its own telegram to address 5 leaves at TRT
+// 100 and begins at its receiver at about 100.8 on its counter; the 2 Mbit/s receiver reports
+// the address 11.25 µs later. An idle header due at 103 comes in between; then a receive
+// header (ACHK, TCHK, address 5) with TRT 104 (window 102..106: the telegram began 1.2 µs
+// before it) or TRT 102 (window 100..104: the control, it began inside).
+class LateArmedWindow : public ::testing::Test {
+ protected:
+  static constexpr Time kShortFibre = 300'000;
+  static constexpr std::uint16_t kLateTscyc = 1000;
+  static constexpr std::uint16_t kLateRx = 0x04C;
+  static constexpr std::uint16_t kLateRxData = 0x053;
+
+  LateArmedWindow() : ring(1, kShortFibre) {}
+
+  void start(std::uint16_t rx_time) {
+    t = timing_2mbit();
+    Chip& m = ring.chip(0);
+    program_master(m, t, kLateTscyc, 4);
+    words(m, 0x000, {0x060, 0x040});
+    transmit_header(m, 0x040, 0x5005, 100, 2, 0x047);  // every cycle, to address 5
+    words(m, 0x044, {0x8002, 0x1111, 0x2222});
+    transmit_header(m, 0x047, 0x4000, 103, 0, 0x04C);  // idle: read, never sent
+    words(m, 0x04B, {0x8000});
+    receive_header(m, kLateRx, 0x1805, rx_time, 2, 0x060);
+    words(m, 0x051, {0x8002, 0, 0, 0});
+    end_marker(m, 0x060, 500);
+    enable_transmission(m);
+    ring.run_for(555'555);
+    first = ceil_to(ring.scheduler.now(), t.mclk());
+    start_master(m);
+  }
+
+  Ring ring;
+  Timing t;
+  Time first = 0;
+};
+
+TEST_F(LateArmedWindow, TelegramThatBeganBeforeTheWindowOpenedIsNotTaken) {
+  start(104);
+  // Precondition: the telegram began at the receiver before the step out of 102 and was
+  // reported after the step out of 103 (when the idle header armed the receive header).
+  const Time begins = on_bit_grid(cycle_time(first, 100, t), t) + kShortFibre;
+  ASSERT_LT(begins, cycle_time(first, 102, t));
+  ASSERT_GT(begins + (225 * t.bit) / 10, cycle_time(first, 103, t));
+  ring.run_for(static_cast<Time>(kLateTscyc) * sim::kMicrosecond - sim::kMicrosecond);
+  Chip& m = ring.chip(0);
+  // Missed (doc §5 "Missed header: RERR = 1, NERR + 1 ... the data stay as they are").
+  EXPECT_EQ(m.ram_read(kLateRx) & 0x2000, 0x2000) << "RERR";
+  EXPECT_EQ(m.ram_read(kLateRx + 4), 1) << "NERR";
+  EXPECT_EQ(m.ram_read(kLateRxData), 0) << "data of a telegram outside the window was stored";
+}
+
+TEST_F(LateArmedWindow, ControlTelegramThatBeganInsideTheWindowIsTaken) {
+  start(102);
+  ring.run_for(static_cast<Time>(kLateTscyc) * sim::kMicrosecond - sim::kMicrosecond);
+  Chip& m = ring.chip(0);
+  EXPECT_EQ(m.ram_read(kLateRx), 0x1805 | 0x0400);
+  EXPECT_EQ(m.ram_read(kLateRx + 4), 0);
+  EXPECT_EQ(m.ram_read(kLateRxData), 0x1111);
+  EXPECT_EQ(m.ram_read(kLateRxData + 1), 0x2222);
+}
+
 }  // namespace
 }  // namespace sercon::chip

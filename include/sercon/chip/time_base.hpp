@@ -103,6 +103,16 @@ class TimeBase : public ChipUnit {
   }
   // When the step out of `cycle_time` will happen in the running cycle, if it is ahead.
   std::optional<sim::Time> time_of_cycle_time(std::int64_t cycle_time) const;
+  // When the step out of `cycle_time` happened in the running cycle, if it has (at or
+  // before now). nullopt when it is ahead, or was not in this cycle (before the cycle
+  // start) or came before the last MCLKDIV change (its time is not kept).
+  std::optional<sim::Time> time_of_past_cycle_time(std::int64_t cycle_time) const {
+    const std::int64_t tick = tick_of(cycle_time);
+    if (!running_ || tick <= ticks_.ticks_before_change()) return std::nullopt;
+    const sim::Time when = time_of_step(cycle_time);
+    if (when > scheduler_.now()) return std::nullopt;
+    return when;
+  }
 
   // `listener(context, start)` at every cycle start, in the order registered. A function
   // and a context, not a std::function: the listeners are the chip's units, fixed at
