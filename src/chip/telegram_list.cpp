@@ -174,6 +174,13 @@ TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, L
   if (match != Match::Accepted) return match;
   item = item_;
   cancel_event();
+  // Doc §2: the walk reaches the items behind a receive header only once it is served; an
+  // address-255 telegram may still prove to be an MST, which serves no header (§3).
+  constexpr std::uint8_t kAddress255 = 0xFF;
+  if (address == kAddress255) {
+    state_ = State::Held;
+    return Match::Accepted;
+  }
   state_ = State::Idle;
   try {
     walk(item.next);
@@ -181,6 +188,16 @@ TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, L
     fault(f);
   }
   return Match::Accepted;
+}
+
+void TelegramList::taken(const ListItem& item) {
+  if (state_ != State::Held || item_.address != item.address) return;
+  state_ = State::Idle;
+  try {
+    walk(item.next);
+  } catch (const ListFault& f) {
+    fault(f);
+  }
 }
 
 void TelegramList::reclaim(const ListItem& item) {

@@ -158,7 +158,11 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
     if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(serial_.bit_period()));
     return;
   }
-  if (current) finish_receive(frame);
+  if (current) {
+    const ListItem item = receiving_->item;
+    finish_receive(frame);
+    list_.taken(item);  // an address-255 telegram held the walk at its header
+  }
 }
 
 void TelegramProcessor::withdraw_mst() {

@@ -208,6 +208,45 @@ TEST_P(Cp12, TimedMdtHeaderKeepsTheRequestUntilAnotherMdtAddress) {
   EXPECT_EQ((ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) != 0, !is816) << "FLMDTADR";
 }
 
+// docs/telegram-processing.md §2: "The walk reaches an end marker only after every receive
+// header before it has been served or missed"; §3: an MST accepted by a header "is withdrawn
+// at its detection: VAL is put back as it was and the header waits again". The drive's
+// header for the broadcast MDT (ACHK, address 255, TCHK = 0) gets no MDT (the master sends
+// its MDT to drive 1) and waits all cycle; the end marker behind it (TEND 1000) is never
+// reached, so no INT_ENDMK, though the next MST (address 255) reaches the header.
+TEST_P(Cp12, MstTakenByAWaitingHeaderRaisesNoEndMarker) {
+  start(0x5001, 0x08FF);
+  run_cycles(1);
+  ring.chip(1).reg_write(kIntStat, 0xFFFF);
+  run_cycles(2);
+  const std::uint16_t intstat = ring.chip(1).reg_read(kIntStat);
+  EXPECT_EQ(intstat & kIntRerr, kIntRerr) << "INT_RERR: the header was missed";
+  EXPECT_EQ(intstat & kIntEndmk, 0) << "INT_ENDMK";
+}
+
+// Control: the drive's header for its own address, an MDT to it every cycle.
+TEST_P(Cp12, ServedHeaderReachesTheEndMarker) {
+  start(0x5001, 0x0801);
+  run_cycles(1);
+  ring.chip(1).reg_write(kIntStat, 0xFFFF);
+  run_cycles(2);
+  const std::uint16_t intstat = ring.chip(1).reg_read(kIntStat);
+  EXPECT_EQ(intstat & kIntRerr, 0) << "INT_RERR";
+  EXPECT_EQ(intstat & kIntEndmk, kIntEndmk) << "INT_ENDMK";
+}
+
+// Control: a header for another drive's address (address 2) is never served either, and
+// the MST is no match for it: no INT_ENDMK.
+TEST_P(Cp12, UnservedHeaderRaisesNoEndMarker) {
+  start(0x5001, 0x0802);
+  run_cycles(1);
+  ring.chip(1).reg_write(kIntStat, 0xFFFF);
+  run_cycles(2);
+  const std::uint16_t intstat = ring.chip(1).reg_read(kIntStat);
+  EXPECT_EQ(intstat & kIntRerr, kIntRerr) << "INT_RERR: the header was missed";
+  EXPECT_EQ(intstat & kIntEndmk, 0) << "INT_ENDMK";
+}
+
 INSTANTIATE_TEST_SUITE_P(Variants, Cp12, ::testing::Values(Variant::Sercon816, Variant::Sercon410B),
                          [](const ::testing::TestParamInfo<Variant>& p) {
                            return p.param == Variant::Sercon816 ? "Sercon816" : "Sercon410B";

@@ -75,8 +75,13 @@ class TelegramList {
   void stop();
 
   // A telegram whose opening flag began at `start` brings `address`: is it the waiting
-  // receive header's? Accepted: `item` is that header, and the walk has moved on.
+  // receive header's? Accepted: `item` is that header, and the walk has moved on, except
+  // for address 255: that may be an MST (no list telegram), so the walk stays at the header
+  // until the detection says (taken() or reclaim()).
   Match offer(sim::Time start, std::uint8_t address, ListItem& item);
+  // An accepted address-255 telegram proved to be a list telegram at its detection: the walk
+  // moves on past `item`. Nothing if the walk is no longer held there (a new cycle, a fault).
+  void taken(const ListItem& item);
   // What offer() would answer now, without taking the telegram. Inline: the receiver asks
   // at every telegram start.
   Match would_take(sim::Time start, std::uint8_t address) const {
@@ -98,7 +103,8 @@ class TelegramList {
   void abort(const ListFault& fault) { this->fault(fault); }
 
  private:
-  enum class State : std::uint8_t { Idle, Transmit, Receive, End };
+  // Held: a receive header took an address-255 telegram, whose detection is awaited.
+  enum class State : std::uint8_t { Idle, Transmit, Receive, Held, End };
 
   void walk(std::uint16_t address);
   void walk_from(const ListItem& first);
