@@ -41,6 +41,15 @@ struct BusBench {
     return *chips[static_cast<std::size_t>(i)]->unit<chip::SerialUnit>();
   }
   Ear& ear(int i) { return *ears[static_cast<std::size_t>(i)]; }
+  // Nodes 0 and 2 each heard one whole telegram, from address `address`, and nothing collided.
+  void expect_only_heard_at_0_and_2(std::uint8_t address) {
+    EXPECT_EQ(bus.collisions(), 0u);
+    for (int i : {0, 2}) {
+      ASSERT_EQ(ear(i).heard.size(), 1u) << i;
+      EXPECT_TRUE(ear(i).heard[0].frame.ok()) << i;
+      EXPECT_EQ(ear(i).heard[0].frame.address, address) << i;
+    }
+  }
 
   sim::Scheduler s;
   Rs485Bus bus;
@@ -204,12 +213,7 @@ TEST(Rs485Bus, ATelegramTakenBackBeforeItStartsNeverReachesTheBus) {
   b.s.run_until(520 * t);
   const Time end = b.unit(1).send(1020 * t, 0x06, kData);
   b.s.run_until(end + 1000 * t);
-  EXPECT_EQ(b.bus.collisions(), 0u);
-  for (int i : {0, 2}) {
-    ASSERT_EQ(b.ear(i).heard.size(), 1u) << i;
-    EXPECT_TRUE(b.ear(i).heard[0].frame.ok()) << i;
-    EXPECT_EQ(b.ear(i).heard[0].frame.address, 0x06) << i;
-  }
+  b.expect_only_heard_at_0_and_2(0x06);
   for (const auto& e : b.tap.events) {
     EXPECT_EQ(e.now, e.at);
     if (e.burst) {
@@ -254,12 +258,7 @@ TEST(Rs485Bus, ANodeThatRepeatsStillDrivesItsOwnTelegrams) {
   const Time t = b.unit(1).bit_period();
   const Time end = b.unit(1).send(100 * t, 0x06, kData);
   b.s.run_until(end + 1000 * t);
-  EXPECT_EQ(b.bus.collisions(), 0u);
-  for (int i : {0, 2}) {
-    ASSERT_EQ(b.ear(i).heard.size(), 1u) << i;
-    EXPECT_TRUE(b.ear(i).heard[0].frame.ok()) << i;
-    EXPECT_EQ(b.ear(i).heard[0].frame.address, 0x06) << i;
-  }
+  b.expect_only_heard_at_0_and_2(0x06);
 }
 
 }  // namespace
