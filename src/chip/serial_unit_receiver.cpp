@@ -291,7 +291,12 @@ void SerialReceiver::refresh_rate() {
   absorb_lazy();
   if (!unit_.running()) return;
   const sim::Time now = scheduler_.now();
-  for (std::size_t i = in_force(now) + 1; i < timeline_.size(); ++i) take(timeline_[i]);
+  const std::size_t current = in_force(now);
+  // The receiver is clocked at the new rate from now (delta spec 2.3.1): the rest of a
+  // telegram coming in at the old one is distorted, so the frame open now is cut here.
+  Entry& in = timeline_[current];
+  if (in.decode && in.segment.period != unit_.bit_period()) cut(in, now);
+  for (std::size_t i = current + 1; i < timeline_.size(); ++i) take(timeline_[i]);
   plan_reports();
   plan_monitor();
   recactn_.replan();

@@ -205,6 +205,51 @@ TEST(serial_Receiver, ABurstAtAnotherRateDecodesNothing) {
   EXPECT_EQ(b.chip->pin(Pin::RECACTN).level(), Level::High);
 }
 
+// Delta spec 2.3.1: the DPLL's clock at the chosen bit rate "is the input clock for the
+// serial receiver and transmitter", and a burst at another rate than the receiver's is
+// distorted (docs/serial-and-ring.md, "Another bit rate"). So a rate change while a
+// telegram comes in cuts it for the receiver at the change: the frame open there ends as
+// an Abort at the change, and RECACTN goes high. Before, the receiver reported it
+// error-free while the line monitor counted its edges after the change as distorted and
+// set RDIST for the same telegram.
+TEST(serial_Receiver, ARateChangeCutsTheTelegramComingIn) {
+  SerialBench b;  // 16 Mbit/s
+  Events ev(b);
+  PinEdges recactn(b, Pin::RECACTN);
+  const Time t = b.period();
+  const auto bits = telegram_bits(0x05, kData);
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  const Time change = 40 * t + 3;
+  b.run_to(change);
+  b.chip->drive(Pin::SBAUD, Level::High);  // 8 Mbit/s (delta spec 2.3.1 table, row 5)
+  ASSERT_EQ(b.period(), bit_period_of(8));
+  b.run_to(sim::kMillisecond);
+  ASSERT_EQ(ev.started.size(), 1u);  // the address had come in before the change
+  ASSERT_EQ(ev.got.size(), 1u);
+  EXPECT_FALSE(ev.got[0].frame.ok());
+  EXPECT_EQ(ev.got[0].frame.error, wire::FrameError::Abort);
+  EXPECT_EQ(ev.got[0].end, change);
+  const std::vector<std::pair<Time, Level>> expected = {{0, Level::Low}, {change, Level::High}};
+  EXPECT_EQ(recactn.edges, expected);
+}
+
+// A telegram whose closing flag was in before the change stands; only the frame open at
+// the change is cut.
+TEST(serial_Receiver, ARateChangeAfterATelegramLeavesItWhole) {
+  SerialBench b;
+  Events ev(b);
+  const Time t = b.period();
+  const auto bits = telegram_bits(0x05, kData);
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  const Time end = static_cast<Time>(bits->size()) * t;
+  b.run_to(end + t);
+  b.chip->drive(Pin::SBAUD, Level::High);
+  b.run_to(sim::kMillisecond);
+  ASSERT_EQ(ev.got.size(), 1u);
+  EXPECT_TRUE(ev.got[0].frame.ok());
+  EXPECT_EQ(ev.got[0].end, end);
+}
+
 // line.hpp: "`at` / `burst.start` may lie in the future of the scheduler's now": the
 // receiver takes such a change when its time comes.
 TEST(serial_Receiver, ChangesAnnouncedForTheFutureAreTakenWhenTheyHappen) {

@@ -43,7 +43,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
   void reset();
   void release();
-  // The bit rate changed: telegrams still to come are judged (decoded or not) at the new one.
+  // The bit rate changed: a telegram coming in at the old rate is cut now (the receiver is
+  // clocked at the new one), telegrams still to come are judged (decoded or not) at the new.
   void refresh_rate();
   void on_start(SerialUnit::TelegramStartHandler handler);
   void on_telegram(SerialUnit::TelegramHandler handler);
