@@ -17,14 +17,16 @@ void LineMonitor::cancel() {
 
 void LineMonitor::reset() {
   cancel();
-  distorted_ = 0;
+  distorted_ = skipped_ = 0;
   rdist_ = fibbr_ = false;  // the register reset cleared the bits, the chip's reset L_ERRN
 }
 
 void LineMonitor::release() {
   segment_ = unit_.receiver().input();
   // The monitor's counters start at release: darkness before it does not count.
-  if (!segment_.has_edges()) segment_.since = unit_.chip().scheduler().now();
+  const sim::Time now = unit_.chip().scheduler().now();
+  if (!segment_.has_edges()) segment_.since = now;
+  skipped_ = edges_before(segment_, now);
   period_ = unit_.bit_period();
   evaluate();
   refresh_line_error();
@@ -33,8 +35,13 @@ void LineMonitor::release() {
 void LineMonitor::input_changed(const RxdSegment& before, const RxdSegment& after) {
   const sim::Time now = unit_.chip().scheduler().now();
   cancel();
-  if (before.has_edges() && before.period != period_) distorted_ += edges_before(before, now);
+  if (before.has_edges() && before.period != period_) {
+    std::uint64_t edges = edges_before(before, now);
+    if (before.since == segment_.since) edges -= std::min(edges, skipped_);
+    distorted_ += edges;
+  }
   segment_ = after;
+  skipped_ = 0;
   evaluate();
 }
 
@@ -44,14 +51,18 @@ void LineMonitor::refresh_limits() {
   const sim::Time period = unit_.bit_period();
   // Between bad signals the monitor is not told of changes (the receiver's plan_monitor):
   // take up what RxD carries now.
-  if (const RxdSegment& in = unit_.receiver().input(); in.since > segment_.since) segment_ = in;
+  if (const RxdSegment& in = unit_.receiver().input(); in.since > segment_.since) {
+    segment_ = in;
+    skipped_ = 0;
+  }
   if (period != period_) {
-    // A new rate: judge from now on what RxD carries now (a telegram counts as its fill).
+    // A new rate: what RxD carries now is judged by it from now on, edge by edge where the
+    // signal has them (a telegram's level changes, then its trailing fill's).
+    const std::uint64_t before_now = edges_before(segment_, now);
     if (segment_.has_edges() && segment_.period != period_) {
-      distorted_ += edges_before(segment_, now);
+      distorted_ += before_now - std::min(before_now, skipped_);
     }
-    if (segment_.is_burst) segment_ = RxdSegment::of(now, LineCondition::Idle, segment_.period);
-    if (segment_.has_edges()) segment_.since = now;
+    skipped_ = before_now;
     period_ = period;
   }
   evaluate();
@@ -80,7 +91,7 @@ void LineMonitor::evaluate() {
   const std::uint64_t limit = std::max<std::uint16_t>(f.rdistlim.get(regs), 1);
   if (distorted_ >= limit) return set_rdist(true);
   if (rdist_) return;
-  const sim::Time due = nth_edge_time(segment_, limit - distorted_);
+  const sim::Time due = nth_edge_time(segment_, skipped_ + limit - distorted_);
   if (due <= now) return set_rdist(true);
   rdist_event_ = s.at(due, [this] { set_rdist(true); });
 }

@@ -193,6 +193,48 @@ TEST(serial_LineMonitor, CleanEdgesRestartTheCount) {
   EXPECT_TRUE(bit(b, kSerCtrl, kRdist));
 }
 
+// A rate change judges what RxD carries from then on at the new rate: its edges after the
+// change, where the signal has them. Idle fill at 16 Mbit/s has its level changes every 8 of
+// its bit times from its start; the receiver switched to 8 Mbit/s half-way between two of
+// them counts the next one as the first distorted edge, not the moment of the change (no
+// edge is there). RDISTLIM = 1.
+TEST(serial_LineMonitor, ARateChangeCountsTheEdgesTheSignalHasAfterIt) {
+  SerialBench b;  // 16 Mbit/s
+  const Time t = b.period();
+  b.chip->reg_write(kLineMon, 0xFF01);
+  b.unit.rxd().line_condition(0, LineCondition::Idle, t);  // edges at 0, 8t, 16t, ...
+  const Time change = 8 * 8 * t + 4 * t;
+  b.run_to(change);
+  b.chip->drive(Pin::SBAUD, Level::High);  // 8 Mbit/s (delta spec 2.3.1 table)
+  ASSERT_EQ(b.period(), bit_period_of(8));
+  EXPECT_FALSE(bit(b, kSerCtrl, kRdist));
+  expect_rises_at(b, kRdist, 9 * 8 * t);
+}
+
+// The same for a telegram at the old rate still coming in: its own level changes after the
+// change are the distorted edges. RDISTLIM = 2: RDIST rises at the second level change
+// after the change.
+TEST(serial_LineMonitor, ARateChangeCountsTheRestOfATelegramsEdges) {
+  SerialBench b;
+  const Time t = b.period();
+  b.chip->reg_write(kLineMon, 0xFF02);
+  const auto bits = telegram_bits(0x33, {0x00, 0xF0, 0x0F});
+  b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  const Time change = 20 * t + 7;
+  b.run_to(change);
+  b.chip->drive(Pin::SBAUD, Level::High);
+  std::size_t second = 0;
+  int edges = 0;
+  for (std::size_t i = 21; i < bits->size(); ++i) {  // line bit 21 starts after the change
+    if (bits->level(i) != bits->level(i - 1) && ++edges == 2) {
+      second = i;
+      break;
+    }
+  }
+  ASSERT_GT(second, 0u);
+  expect_rises_at(b, kRdist, static_cast<Time>(second) * t);
+}
+
 // Decision: RDISTLIM = 0 counts as 1 (the first distorted edge).
 TEST(serial_LineMonitor, RdistlimZeroCountsAsOne) {
   SerialBench b;

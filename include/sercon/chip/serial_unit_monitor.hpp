@@ -50,6 +50,9 @@ class LineMonitor {
   RxdSegment segment_;
   sim::Time period_ = 0;         // the receiver's bit period segment_ is judged by
   std::uint64_t distorted_ = 0;  // distorted edges in a row before segment_
+  // Edges of segment_ not judged: before the rate it is judged by took effect, or before
+  // release (the count starts there).
+  std::uint64_t skipped_ = 0;
   bool rdist_ = false, fibbr_ = false;
   sim::Scheduler::EventId rdist_event_{}, fibbr_event_{};
 };
