@@ -4,13 +4,15 @@
  *
  * Errors: functions return a negative sercon_status (or NULL) and sercon_last_error()
  * says what went wrong, in English. No call throws or aborts on bad input.
- * Ownership: a sim owns its chips. Free chips with sercon_chip_free(), or all at once
- * with sercon_sim_free(), after which the chip pointers must not be used.
+ * Ownership: a sim owns its chips and fibres. Free chips with sercon_chip_free() (which
+ * frees the fibres to and from the chip too), fibres with sercon_fibre_free(), or all at
+ * once with sercon_sim_free(), after which those pointers must not be used.
  * Threads: a sim and its chips belong to one thread at a time; the last error is kept
  * per thread.
  * Callbacks: a pin callback may read and write registers, RAM and pins, but must not
- * free a chip or a sim or call sercon_sim_run_until(): those calls are refused there
- * (run_until returns SERCON_ERR_ARGUMENT, the frees do nothing) and set the last error. */
+ * free a chip, a fibre or a sim, make a fibre or call sercon_sim_run_until(): those calls
+ * are refused there (run_until returns SERCON_ERR_ARGUMENT, sercon_fibre_new NULL, the
+ * frees do nothing) and set the last error. */
 #ifndef SERCON_SERCON_H
 #define SERCON_SERCON_H
 
@@ -22,6 +24,7 @@ extern "C" {
 
 typedef struct sercon_sim sercon_sim;
 typedef struct sercon_chip sercon_chip;
+typedef struct sercon_fibre sercon_fibre;
 
 typedef enum sercon_status {
   SERCON_OK = 0,
@@ -176,6 +179,37 @@ int sercon_on_pin_change(sercon_chip* chip, int pin, sercon_pin_callback callbac
 /* Serial bit rate in bit/s (also the TxC / RxC frequency), from the pins and register
  * 0x01; 0 while OUTZ = 1. Negative sercon_status on error. */
 int64_t sercon_bit_rate(const sercon_chip* chip);
+
+/* Fibres (docs/serial-and-ring.md, "Fibre"): chips talk to each other through them. A
+ * fibre carries what TxD pin `txd` (1..6) of `from` sends to the RxD of `to`, after
+ * round(length_m * 5000) ps (light travels 1 m of fibre in about 5 ns). A ring is a
+ * master and its slaves joined in a loop: master TxD1 -> slave 1, slave 1 TxD1 -> slave 2,
+ * ..., last slave TxD1 -> master; the lines come up through the registers (0x02 TXOE bit 0
+ * and TXLIGHT, 0x01 REPON in the slaves). `from` and `to` must be chips of one sim (the
+ * same chip makes a loopback). NULL (see sercon_last_error()) for a NULL chip, chips of
+ * two sims, a pin outside 1..6 or one that already feeds a fibre, an RxD that already
+ * has one, or a length that is negative, not finite or longer than 1000 s of light. */
+sercon_fibre* sercon_fibre_new(sercon_chip* from, int txd, sercon_chip* to, double length_m);
+/* Frees the fibre: the RxD it fed goes dark at once (its signal is missing), and the TxD
+ * pin feeds nothing. NULL is ignored. */
+void sercon_fibre_free(sercon_fibre* fibre);
+/* The propagation delay in ps, or a negative sercon_status. */
+int64_t sercon_fibre_delay_ps(const sercon_fibre* fibre);
+/* Breaks the fibre at t_ps (>= now; at once when t_ps is now, or inside a pin callback
+ * right after the event that called it): the far end is dark from then on, a telegram
+ * crossing it is cut there. Restored at t_ps, the far end gets what arrives from then on
+ * (a telegram half-way through counts as the idle fill after it). SERCON_ERR_RANGE for a
+ * time in the past. */
+int sercon_fibre_break(sercon_fibre* fibre, int64_t t_ps);
+int sercon_fibre_restore(sercon_fibre* fibre, int64_t t_ps);
+/* 1 while broken, 0 while whole, or a negative sercon_status. */
+int sercon_fibre_broken(const sercon_fibre* fibre);
+/* From now on each line bit of each telegram is flipped with probability p (0..1; 0: no
+ * errors), drawn from a generator seeded with `seed`: the same seed, the same errors.
+ * Resets the count of sercon_fibre_bit_errors(). */
+int sercon_fibre_set_bit_error_rate(sercon_fibre* fibre, double p, uint64_t seed);
+/* Line bits flipped since the rate was last set, or a negative sercon_status. */
+int64_t sercon_fibre_bit_errors(const sercon_fibre* fibre);
 
 #ifdef __cplusplus
 }

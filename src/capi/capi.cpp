@@ -11,6 +11,8 @@
 
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/pins.hpp"
+#include "sercon/chip/serial_unit.hpp"
+#include "sercon/ring/fibre.hpp"
 #include "sercon/sim/scheduler.hpp"
 #include "sercon/sim/scoped_count.hpp"
 
@@ -19,8 +21,18 @@ struct sercon_chip {
   std::unique_ptr<sercon::chip::Chip> chip;
 };
 
+struct sercon_fibre {
+  sercon_sim* sim = nullptr;
+  sercon_chip* from = nullptr;
+  unsigned txd = 1;
+  sercon_chip* to = nullptr;
+  std::unique_ptr<sercon::ring::Fibre> fibre;
+};
+
 struct sercon_sim {
   sercon::sim::Scheduler scheduler;
+  // Fibres reference the chips' serial units: they are let go first (release_fibres).
+  std::vector<std::unique_ptr<sercon_fibre>> fibres;
   std::vector<std::unique_ptr<sercon_chip>> chips;
 };
 
@@ -93,6 +105,32 @@ bool refused_in_callback(const char* what) {
 }
 }  // namespace
 
+namespace {
+
+sercon::chip::SerialUnit& serial_of(sercon_chip& chip) {
+  auto* unit = chip.chip->unit<sercon::chip::SerialUnit>();
+  if (unit == nullptr) throw std::logic_error("the chip has no serial unit");
+  return *unit;
+}
+
+// Unhooks a fibre from both chips: the TxD pin feeds nothing, the RxD goes dark at once.
+void unhook(sercon_fibre& f) {
+  serial_of(*f.from).disconnect_txd(f.txd);
+  f.fibre->disconnect();
+}
+
+// Frees the fibres that `pick` selects, unhooked first.
+template <typename Pick>
+void release_fibres(sercon_sim& sim, Pick pick) {
+  auto& fibres = sim.fibres;
+  for (const auto& f : fibres) {
+    if (pick(*f)) unhook(*f);
+  }
+  std::erase_if(fibres, [&](const auto& f) { return pick(*f); });
+}
+
+}  // namespace
+
 extern "C" {
 
 const char* sercon_last_error(void) { return last_error.c_str(); }
@@ -108,6 +146,11 @@ sercon_sim* sercon_sim_new(void) {
 
 void sercon_sim_free(sercon_sim* sim) {
   if (sim == nullptr || refused_in_callback("sercon_sim_free")) return;
+  guarded("sercon_sim_free", [&] {
+    release_fibres(*sim, [](const sercon_fibre&) { return true; });
+    return SERCON_OK;
+  });
+  sim->fibres.clear();
   sim->chips.clear();  // chips cancel their events before the scheduler goes
   delete sim;
 }
@@ -192,6 +235,11 @@ sercon_chip* sercon_chip_new(sercon_sim* sim, const sercon_chip_config* config) 
 
 void sercon_chip_free(sercon_chip* chip) {
   if (chip == nullptr || refused_in_callback("sercon_chip_free")) return;
+  guarded("sercon_chip_free", [&] {
+    release_fibres(*chip->sim,
+                   [chip](const sercon_fibre& f) { return f.from == chip || f.to == chip; });
+    return SERCON_OK;
+  });
   auto& chips = chip->sim->chips;
   std::erase_if(chips, [chip](const auto& owned) { return owned.get() == chip; });
 }
@@ -281,6 +329,125 @@ int sercon_on_pin_change(sercon_chip* chip, int pin, sercon_pin_callback callbac
 int64_t sercon_bit_rate(const sercon_chip* chip) {
   if (chip == nullptr) return null_argument("sercon_bit_rate", "chip");
   return chip->chip->serial_clocks().bit_rate_hz;
+}
+
+sercon_fibre* sercon_fibre_new(sercon_chip* from, int txd, sercon_chip* to, double length_m) {
+  const char* what = "sercon_fibre_new";
+  if (from == nullptr || to == nullptr) {
+    null_argument(what, from == nullptr ? "from" : "to");
+    return nullptr;
+  }
+  if (refused_in_callback(what)) return nullptr;
+  if (from->sim != to->sim) {
+    fail(SERCON_ERR_ARGUMENT, std::string(what) + ": the two chips belong to different sims");
+    return nullptr;
+  }
+  const auto kTxdCount = static_cast<int>(sercon::chip::SerialUnit::kTxdCount);
+  if (txd < 1 || txd > kTxdCount) {
+    fail(SERCON_ERR_ARGUMENT,
+         std::string(what) + ": no TxD pin " + std::to_string(txd) + " (TxD1..TxD6 are 1..6)");
+    return nullptr;
+  }
+  sercon_sim& sim = *from->sim;
+  for (const auto& f : sim.fibres) {
+    if (f->from == from && f->txd == static_cast<unsigned>(txd)) {
+      fail(SERCON_ERR_ARGUMENT, std::string(what) + ": TxD" + std::to_string(txd) +
+                                    " of that chip feeds a fibre already (free it first)");
+      return nullptr;
+    }
+    if (f->to == to) {
+      fail(SERCON_ERR_ARGUMENT,
+           std::string(what) + ": the RxD of that chip has a fibre already (free it first)");
+      return nullptr;
+    }
+  }
+  sercon_fibre* made = nullptr;
+  const int status = guarded(what, [&] {
+    auto f = std::make_unique<sercon_fibre>();
+    f->sim = &sim;
+    f->from = from;
+    f->txd = static_cast<unsigned>(txd);
+    f->to = to;
+    f->fibre = std::make_unique<sercon::ring::Fibre>(sim.scheduler, length_m);
+    sercon::chip::SerialUnit& out = serial_of(*from);
+    sercon::chip::SerialUnit& in = serial_of(*to);
+    sercon_fibre* const kept = f.get();
+    sim.fibres.push_back(std::move(f));
+    try {
+      kept->fibre->connect(in.rxd());
+      out.connect_txd(kept->txd, kept->fibre->input());
+    } catch (...) {  // not half made: unhooked and gone
+      release_fibres(sim, [kept](const sercon_fibre& x) { return &x == kept; });
+      throw;
+    }
+    made = kept;
+    return SERCON_OK;
+  });
+  return status == SERCON_OK ? made : nullptr;
+}
+
+void sercon_fibre_free(sercon_fibre* fibre) {
+  if (fibre == nullptr || refused_in_callback("sercon_fibre_free")) return;
+  guarded("sercon_fibre_free", [&] {
+    release_fibres(*fibre->sim, [fibre](const sercon_fibre& f) { return &f == fibre; });
+    return SERCON_OK;
+  });
+}
+
+int64_t sercon_fibre_delay_ps(const sercon_fibre* fibre) {
+  if (fibre == nullptr) return null_argument("sercon_fibre_delay_ps", "fibre");
+  return fibre->fibre->delay();
+}
+
+namespace {
+
+// A break or restore at t_ps: at once when it is now (inside a pin callback right after
+// the running event, which may be in the middle of a chip's own change), else an event.
+int switch_fibre(sercon_fibre* fibre, int64_t t_ps, bool broken, const char* what) {
+  if (fibre == nullptr) return null_argument(what, "fibre");
+  const sercon::sim::Time now = fibre->sim->scheduler.now();
+  if (t_ps < now) {
+    return fail(SERCON_ERR_RANGE, std::string(what) + ": " + std::to_string(t_ps) +
+                                      " ps is before now (" + std::to_string(now) + " ps)");
+  }
+  return guarded(what, [&] {
+    sercon::ring::Fibre& f = *fibre->fibre;
+    if (t_ps == now && callback_depth == 0) {
+      broken ? f.break_now() : f.restore();
+    } else {
+      broken ? f.break_at(t_ps) : f.restore_at(t_ps);
+    }
+    return SERCON_OK;
+  });
+}
+
+}  // namespace
+
+int sercon_fibre_break(sercon_fibre* fibre, int64_t t_ps) {
+  return switch_fibre(fibre, t_ps, true, "sercon_fibre_break");
+}
+
+int sercon_fibre_restore(sercon_fibre* fibre, int64_t t_ps) {
+  return switch_fibre(fibre, t_ps, false, "sercon_fibre_restore");
+}
+
+int sercon_fibre_broken(const sercon_fibre* fibre) {
+  if (fibre == nullptr) return null_argument("sercon_fibre_broken", "fibre");
+  return fibre->fibre->broken() ? 1 : 0;
+}
+
+int sercon_fibre_set_bit_error_rate(sercon_fibre* fibre, double p, uint64_t seed) {
+  const char* what = "sercon_fibre_set_bit_error_rate";
+  if (fibre == nullptr) return null_argument(what, "fibre");
+  return guarded(what, [&] {
+    fibre->fibre->set_bit_error_rate(p, seed);
+    return SERCON_OK;
+  });
+}
+
+int64_t sercon_fibre_bit_errors(const sercon_fibre* fibre) {
+  if (fibre == nullptr) return null_argument("sercon_fibre_bit_errors", "fibre");
+  return static_cast<int64_t>(fibre->fibre->bit_errors());
 }
 
 }  // extern "C"
