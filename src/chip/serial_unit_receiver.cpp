@@ -402,7 +402,7 @@ void SerialReceiver::fire_report() {
   const sim::Time start = st.start;
   if (r.telegram) {
     st.end_done = true;
-    on_telegram_(ReceivedTelegram{start, st.end, r.when, f});
+    on_telegram_(ReceivedTelegram{start, st.end, r.when, e->segment.period, f});
   } else {
     st.start_done = true;
     on_start_(start, f.address);

@@ -155,7 +155,8 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   }
   if (is_mst(frame)) {
     if (current) withdraw_mst();
-    if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(serial_.bit_period()));
+    // Recognised 5.5 of its own bit times after its end, as its detection was timed.
+    if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(telegram.bit_period));
     return;
   }
   if (current) {

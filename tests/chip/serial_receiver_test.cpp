@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "register_words.hpp"
 #include "serial_bench.hpp"
 
 namespace sercon::chip {
@@ -248,6 +249,33 @@ TEST(serial_Receiver, ARateChangeAfterATelegramLeavesItWhole) {
   ASSERT_EQ(ev.got.size(), 1u);
   EXPECT_TRUE(ev.got[0].frame.ok());
   EXPECT_EQ(ev.got[0].end, end);
+}
+
+// A slave's MST whole at the old rate when the rate changes at its very end (the telegram
+// stands: "Another bit rate"): its detection comes 5.5 of its own bit times after its end
+// (facts §5 t_start), and the counter loads at that detection (docs/timing.md, "Cycle
+// start"). The telegram processor must hand the cycle control the recognition point of that
+// same telegram, not one worked out with the new rate's bit time, which lies before the
+// detection and made the load "before now" (an exception out of the scheduler).
+TEST(serial_Receiver, AnMstEndingAtARateChangeStartsTheSlavesCycleAtItsDetection) {
+  namespace words = register_words;
+  SerialBench b;
+  b.chip->drive(Pin::SBAUD, Level::High);  // 8 Mbit/s (delta spec 2.3.1 table)
+  const Time t = b.period();
+  ASSERT_EQ(t, bit_period_of(8));
+  b.chip->reg_write(words::kClockDiv, 5 << 8 | 31);  // MCLKST 5, 1 µs ticks at 32 MHz
+  b.chip->reg_write(words::kTcntst, 3);
+  b.chip->reg_write(words::kTscyc0, 250);
+  const auto bits = telegram_bits(0xFF, {2});  // an MST of phase 2 (facts §2)
+  const Time start = 10 * sim::kMicrosecond;
+  b.unit.rxd().line_burst(LineBurst{start, t, bits});
+  const Time end = start + static_cast<Time>(bits->size()) * t;
+  b.run_to(end);
+  b.chip->drive(Pin::SBAUD, Level::Low);  // 16 Mbit/s from the end of the MST
+  ASSERT_EQ(b.period(), bit_period_of(16));
+  ASSERT_NO_THROW(b.run_to(end + 5 * sim::kMicrosecond));
+  EXPECT_TRUE(b.chip->reg_read(words::kIntStat) & words::kIntCycst);
+  EXPECT_EQ(b.chip->reg_read(words::kPhase) >> 8, 2);  // PHASR from the MST
 }
 
 // line.hpp: "`at` / `burst.start` may lie in the future of the scheduler's now": the

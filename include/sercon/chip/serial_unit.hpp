@@ -40,6 +40,9 @@ struct ReceivedTelegram {
   sim::Time start;     // first bit of the opening flag at RxD
   sim::Time end;       // end of the closing flag's last bit at RxD (or where the error cut it)
   sim::Time detected;  // first MCLK edge at or after end + 5.5 bit + 3 MCLK (facts §5)
+  // The bit time it came at, which `detected` counts in (a rate change after its end
+  // leaves it the telegram's own: "Another bit rate").
+  sim::Time bit_period;
   // Address, data, error class. Valid only during the on_telegram callback: it may be the
   // memoized decode shared with every other chip that received the same bits.
   const wire::DecodedFrame& frame;
