@@ -201,6 +201,17 @@ void TelegramList::taken(const ListItem& item) {
 }
 
 void TelegramList::reclaim(const ListItem& item) {
+  if (state_ != State::Held || item_.address != item.address) {
+    // A cycle start came while the telegram was under way: the header's cycle is over and
+    // it got no list telegram in it, so it is missed as at that start; the new cycle's
+    // walk is left alone.
+    try {
+      client_.receive_missed(item);
+    } catch (const ListFault& f) {
+      client_.list_fault(f);
+    }
+    return;
+  }
   stop();
   try {
     walk_from(item);

@@ -386,6 +386,36 @@ TEST_F(Loopback, MstIsNeverAListTelegram) {
   EXPECT_FALSE(chip().reg_read(kIntStat) & kIntRend);
 }
 
+// An MST taken (and withdrawn) across a cycle start.
+//
+// docs/telegram-processing.md §3 "an MST serves no header", §2 "a receive header still
+// waiting [at a new cycle start] is missed", "Next cycle: a new cycle start ends the old
+// walk". The own MST goes out at TCYCSTART = 97 of a 100-µs cycle and comes back over the
+// 1-µs loop: its address is in before the next cycle start, its detection after it. A
+// receive header for address 255 (ACHK = 1, TCHK = 0) behind an every-cycle transmit header
+// takes its address; at the detection it proves to be an MST. The header's cycle is over
+// by then: it is missed for that cycle, and the new cycle's walk (its transmit telegram at
+// TRT 20) goes on untouched.
+TEST_F(Loopback, MstWithdrawnAfterTheNextCycleStartLeavesTheNewWalkAlone) {
+  chip().reg_write(kTcycstart, 97);
+  start(0x5005, 0x08FF);
+  // Precondition: the MST of cycle 0 begins at the receiver before the cycle-1 start and
+  // ends after it.
+  const Time mst_out = on_bit_grid(cycle_time(first, 97, t), t);
+  const std::array<std::uint8_t, 1> phase{4};
+  const Time mst_in = mst_out + kFibre;
+  ASSERT_LT(mst_in + 23 * t.bit + 4 * t.mclk(), first + cycle(1));
+  ASSERT_GT(mst_in + static_cast<Time>(line_bits(0xFF, phase)) * t.bit, first + cycle(1));
+  run_cycles(4);
+  const auto s = sent();
+  ASSERT_EQ(s.size(), 4u);  // the transmit telegram of every cycle
+  for (int n = 0; n < 4; ++n) EXPECT_EQ(s[static_cast<std::size_t>(n)].start, tx_start(n)) << n;
+  // Cycles 0, 1 and 2 missed (cycle 3's header still waits): RERR, NERR 3, VAL kept 0.
+  EXPECT_EQ(chip().ram_read(kRx), 0x08FF | 0x2000);
+  EXPECT_EQ(chip().ram_read(kRx + 4), 3);
+  EXPECT_FALSE(chip().reg_read(kIntStat) & kIntRend);
+}
+
 // A TCHK header armed late: the window's opening is not forgotten.
 //
 // docs/telegram-processing.md §5: a TCHK = 1 header takes a telegram when "its opening flag

@@ -95,7 +95,9 @@ class TelegramList {
   // A receive header waits: only then can offer() answer anything but NotExpected.
   bool waits_for_telegram() const { return state_ == State::Receive; }
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
-  // it had not been offered (its window may have closed meanwhile: then it is missed).
+  // it had not been offered (its window may have closed meanwhile: then it is missed). If a
+  // new cycle started since the offer, `item`'s cycle is over: it is missed, and the new
+  // cycle's walk goes on as it is.
   void reclaim(const ListItem& item);
   // A fault the client found outside the walk (in an accepted telegram's containers, at its
   // detection): the list stops for the rest of the cycle, as for a fault found by the walk,
