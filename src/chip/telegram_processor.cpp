@@ -253,7 +253,11 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
   }
   const bool val = transmit_.reread_val(item);
   if (item.has(kEn)) transmit_.clear_send_once(item, val);
-  if (flag_gated && chip_.variant() == Variant::Sercon816) flmdtadr_.set(regs_, false);
+  // Delta spec 2.9.2: the 816 resets the flag "after starting to send a telegram when
+  // initiated when the flag is set": any telegram started while it is set, also an AT of
+  // CP3/4 that it did not gate, so a request answered there brings no second AT after a
+  // fall back to CP0..2.
+  if (chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_)) flmdtadr_.set(regs_, false);
   const auto data = transmit_.gather(item, val, port());
   const sim::Time end = serial_.send(now, item.adr(), data);
   // The previous telegram's end may be due at this very instant: raise it now.

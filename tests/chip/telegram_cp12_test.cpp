@@ -215,6 +215,38 @@ TEST_P(Cp12, TimedMdtHeaderKeepsTheRequestUntilAnotherMdtAddress) {
   expect_one_mdt_answered_as_the_variant_does();
 }
 
+// Delta spec 2.9.1: in phases 1 and 2 "the drive ... should send a telegram only in case it
+// is requested to do so by the master. After the request the telegram should be send only
+// once"; 2.9.2: "In the SERCON816, the flag FLMDTADR is reset after starting to send a
+// telegram when initiated when the flag is set". The MDT of cycle 0 requests an AT; the
+// master then goes to CP3 for cycle 1, where the drive's AT (its one list serves COMPT0 and
+// COMPT1) goes out ungated while the flag is set, and back to CP1 for cycle 2 with no MDT.
+// On the 816 the CP3 AT started with the flag set and reset it: no second AT in cycle 2 for
+// the one request. The 410B keeps the flag until an MDT with another address (its bug).
+TEST_P(Cp12, AnAtStartedInCp3ResetsTheRequestOnThe816) {
+  start(0x4801);  // send once: one MDT, in cycle 0
+  ring.scheduler.run_until(first + 1000 * sim::kMicrosecond);
+  ring.chip(0).reg_write(kPhase, 3);  // cycle 1 in CP3 (the master's CP3 list: end marker)
+  ring.scheduler.run_until(first + cycle(1) + 1000 * sim::kMicrosecond);
+  ring.chip(0).reg_write(kPhase, 1);  // cycle 2 back in CP1
+  ring.scheduler.run_until(first + cycle(3) - 100 * sim::kMicrosecond);
+  ASSERT_EQ(ring.chip(1).reg_read(kPhase) >> 8, 1);  // PHASR: the drive is in CP1 again
+  // The cycles in which the drive's AT left it: address 1 near T1, not the MDT it repeats
+  // at 600 µs (the MST of phase 3 is a stuffed bit longer than that of phase 1, so the CP3
+  // AT is not at at_start(1)).
+  std::vector<int> ats;
+  for (const Seen& x : ring.fibres[1]->seen) {
+    const Time in_cycle = (x.start - first) % cycle(1);
+    if (x.address == 1 && in_cycle < at_start(0) - first + 5 * t.bit) {
+      ats.push_back(static_cast<int>((x.start - first) / cycle(1)));
+    }
+  }
+  const bool is816 = GetParam() == Variant::Sercon816;
+  const std::vector<int> expected = is816 ? std::vector<int>{1} : std::vector<int>{1, 2};
+  EXPECT_EQ(ats, expected);
+  EXPECT_EQ((ring.chip(1).reg_read(kSlvFlags) & kFlmdtadr) != 0, !is816) << "FLMDTADR";
+}
+
 // docs/telegram-processing.md §2: "The walk reaches an end marker only after every receive
 // header before it has been served or missed"; §3: an MST accepted by a header "is withdrawn
 // at its detection: VAL is put back as it was and the header waits again". The drive's
