@@ -9,7 +9,10 @@
  * once with sercon_sim_free(), after which those pointers must not be used.
  * Threads: a sim and its chips belong to one thread at a time; the last error is kept
  * per thread.
- * Callbacks: a pin callback may read and write registers, RAM and pins, but must not
+ * Callbacks: a pin callback hears a change when the step that made it is done (an event,
+ * a register or RAM access, a chip's reaction to a pin), one change at a time in the order
+ * they happened, so it never runs inside a chip's half-done reaction.
+ * A pin callback may read and write registers, RAM and pins, but must not
  * free a chip, a fibre or a sim, make a fibre or call sercon_sim_run_until(): those calls
  * are refused there (run_until returns SERCON_ERR_ARGUMENT, sercon_fibre_new NULL, the
  * frees do nothing) and set the last error. */

@@ -185,8 +185,10 @@ void Chip::leave_reset() {
 
 void Chip::software_reset() {
   if (in_reset()) return;
-  enter_reset(ResetCause::Software);
-  leave_reset();
+  sim::Signal::batch([this] {
+    enter_reset(ResetCause::Software);
+    leave_reset();
+  });
 }
 
 void Chip::apply_pin_reset_bits() {
@@ -310,7 +312,13 @@ BusResult Chip::write_strobe_ends(const BusCycle& cycle) {
   return access(c, false);  // the collision was the strobe start's question
 }
 
+// One batch of signal changes (sim/signal.hpp): the pins an access moves (INT0/1 after a
+// W1C, outputs after a mode write) are heard once the chip has taken the whole access.
 BusResult Chip::access(const BusCycle& cycle, bool ask_busy) {
+  return sim::Signal::batch([&] { return take_access(cycle, ask_busy); });
+}
+
+BusResult Chip::take_access(const BusCycle& cycle, bool ask_busy) {
   const BusTarget target = decode_target(cycle);
   if (target == BusTarget::Both) {
     throw std::invalid_argument(

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "sercon/sim/signal.hpp"
+
 namespace sercon::sim {
 namespace {
 
@@ -176,10 +178,12 @@ void Scheduler::run_callback(std::uint32_t index) {
   callback();
 }
 
+// Each event is one batch of signal changes (signal.hpp): what its pins do is heard once
+// the event is done, so a watcher never sees a model half-way through an event.
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
   for (const Entry* next = front(); next != nullptr && next->when <= until; next = front()) {
-    run(*next);
+    Signal::batch([this, next] { run(*next); });
   }
   now_ = until;
 }
@@ -187,7 +191,7 @@ void Scheduler::run_until(Time until) {
 bool Scheduler::step() {
   const Entry* next = front();
   if (next == nullptr) return false;
-  run(*next);
+  Signal::batch([this, next] { run(*next); });
   return true;
 }
 

@@ -1,10 +1,75 @@
 #include "sercon/sim/signal.hpp"
 
 namespace sercon::sim {
+namespace {
+
+// Changes waiting to be told while watchers of another are being told (one simulation runs
+// on one thread).
+struct Pending {
+  Signal* signal;
+  Level level;
+};
+thread_local bool telling = false;
+thread_local bool any_pending = false;  // trivial: asked at every batch without the vector's
+                                        // thread-local initialisation check
+thread_local std::vector<Pending> pending;
+
+}  // namespace
+
+// A signal gone before its turn is skipped (left in place: the drain walks by index).
+Signal::~Signal() {
+  if (!any_pending) return;
+  for (Pending& p : pending) {
+    if (p.signal == this) p.signal = nullptr;
+  }
+}
 
 void Signal::set(Level level) {
   if (level == level_) return;
   level_ = level;
+  if (watching_ == 0) return;
+  if (telling) {
+    pending.push_back(Pending{this, level});
+    any_pending = true;
+    return;
+  }
+  // Outermost change: tell it, then every change made meanwhile, in order.
+  batch([this, level] { tell(level); });
+}
+
+bool Signal::open_batch() {
+  if (telling) return false;
+  telling = true;
+  return true;
+}
+
+void Signal::close_batch() {
+  if (!any_pending) {  // the usual event: its pins changed nothing anyone watches
+    telling = false;
+    return;
+  }
+  // A watcher that throws leaves nothing queued for the next change to tell.
+  struct Done {
+    ~Done() {
+      telling = false;
+      any_pending = false;
+      pending.clear();
+    }
+  } done;
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    const Pending p = pending[i];
+    if (p.signal != nullptr) p.signal->tell(p.level);
+  }
+}
+
+void Signal::abandon_batch() {
+  telling = false;
+  if (!any_pending) return;
+  any_pending = false;
+  pending.clear();
+}
+
+void Signal::tell(Level level) {
   // Index loop: a watcher may add watchers while being told.
   for (std::size_t i = 0; i < watchers_.size(); ++i) {
     if (watchers_[i]) watchers_[i](level);

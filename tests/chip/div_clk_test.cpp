@@ -104,6 +104,25 @@ TEST(DivClk, Int0CallbackSeesThePulseItAnnounces) {
   EXPECT_EQ(seen, (std::vector<Level>{Level::High, Level::High}));
 }
 
+// The other way round: a callback on the DIV_CLK pin itself finds INT_DIVCLK latched for
+// the pulse it sees begin. Pin and flag change in one event; watchers hear the pin when the
+// event is done (sim/signal.hpp), not between the two.
+TEST(DivClk, DivClkCallbackSeesTheInterruptOfItsPulse) {
+  DivClkBench b;
+  b.chip.reg_write(kTdivclk, 20);
+  b.chip.reg_write(kDtdivclk, 50);
+  b.chip.reg_write(kDivCtrl, 2);
+  std::vector<bool> latched;
+  b.pin(Pin::DIV_CLK).watch([&b, &latched](Level level) {
+    if (level != Level::High) return;
+    latched.push_back((b.chip.reg_read(kIntStat) & kIntDivclk) != 0);
+    b.chip.reg_write(kIntStat, kIntDivclk);  // acknowledge
+  });
+  b.start_master();
+  b.run_to(b.cycle_start(1) - 1);
+  EXPECT_EQ(latched, (std::vector<bool>{true, true}));
+}
+
 // Delta spec 2.7 table: "NDIVCLK 0: Never becomes active".
 TEST(DivClk, NdivclkZeroNever) {
   DivClkBench b;

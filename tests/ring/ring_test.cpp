@@ -288,3 +288,36 @@ TEST(Ring, TooManySlavesIsReportedWithTheCountAskedFor) {
 
 }  // namespace
 }  // namespace sercon::ring
+
+namespace sercon::ring {
+namespace {
+
+// sercon.h: "a pin callback may read and write registers, RAM and pins". OUTZ = 1 floats the
+// outputs and turns the serial clocks off (datasheet Table 1); a board model whose callback
+// on a floating output drives SBAUD must see the chip's whole reaction to OUTZ first. Before
+// (sim/signal.hpp), the callback ran half-way through it: the serial unit took the new rate
+// with its clocks already off and put idle fill of bit period 0 on the fibre, which the
+// fibre refused (std::invalid_argument out of drive()).
+TEST(Ring, ACallbackDrivingAPinWhileOutzFloatsTheOutputsSeesTheWholeReaction) {
+  sim::Scheduler scheduler;
+  Ring ring(scheduler, ChipConfig{}, ChipConfig{}, 1);
+  ring.switch_on_lines();
+  scheduler.run_until(5 * sim::kMicrosecond);
+  chip::Chip& master = ring.master();
+  bool driven = false;
+  master.pin(chip::Pin::INT0).watch([&](sim::Level level) {
+    if (level != sim::Level::HighZ || driven) return;
+    driven = true;
+    master.drive(chip::Pin::SBAUD, sim::Level::High);  // 8 Mbit/s once the clocks run
+  });
+  ASSERT_NO_THROW(master.drive(chip::Pin::OUTZ, sim::Level::High));
+  EXPECT_TRUE(driven);
+  EXPECT_EQ(master.pin(chip::Pin::TxD1).level(), sim::Level::HighZ);
+  ASSERT_NO_THROW(scheduler.run_until(10 * sim::kMicrosecond));
+  ASSERT_NO_THROW(master.drive(chip::Pin::OUTZ, sim::Level::Low));
+  ASSERT_NO_THROW(scheduler.run_until(20 * sim::kMicrosecond));
+  EXPECT_EQ(master.serial_clocks().bit_rate_hz, 8'000'000);
+}
+
+}  // namespace
+}  // namespace sercon::ring

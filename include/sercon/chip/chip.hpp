@@ -246,6 +246,7 @@ class Chip {
   void on_sermode_write(std::uint16_t written);
   [[noreturn]] static void tp_run_beyond_the_ram();
   BusResult access(const BusCycle& cycle, bool ask_busy);
+  BusResult take_access(const BusCycle& cycle, bool ask_busy);
   BusResult ram_cycle(const BusCycle& cycle, const ByteLanes& lanes, bool ask_busy);
   BusResult register_cycle(const BusCycle& cycle, const ByteLanes& lanes);
 

@@ -1,6 +1,13 @@
 // A named wire between models (a chip pin, a fibre's light level). Watchers hear every
 // change of level; reading the time of a change is the scheduler's job.
 //
+// Watchers hear changes one at a time, in the order they happened: a change made while
+// watchers are being told of another (a watcher that drives a pin, a chip's reaction that
+// sets its outputs) or inside a batch (a scheduler event, a chip's bus access) takes effect
+// at once, but its watchers are told after those of the change being told, or when the
+// batch ends. So a model finishes its reaction before anyone hears what it did, and a
+// callback that drives another pin never runs inside a half-done one.
+//
 // A signal may have a provider: a function its model uses to compute the level when it is
 // read, so that a pin nobody watches costs no event per change (RECACTN, IDLE: one change
 // per telegram on every node). The model keeps the watched signal up to date with set() as
@@ -10,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace sercon::sim {
@@ -28,13 +36,23 @@ class Signal {
 
   explicit Signal(std::string name, Level initial = Level::Low)
       : name_(std::move(name)), level_(initial) {}
+  ~Signal();
+  Signal(Signal&&) = default;
+  Signal& operator=(Signal&&) = default;
 
   const std::string& name() const { return name_; }
   Level level() const { return provider_ ? provider_(provider_context_) : level_; }
   bool high() const { return level() == Level::High; }
 
-  // Changes the level and tells every watcher; setting the same level again is silent.
+  // Changes the level and tells every watcher (after those of a change being told, see
+  // above); setting the same level again is silent.
   void set(Level level);
+  // Runs `f`; the changes it makes (on any signal) are told when it returns, in order, as
+  // if they were made inside a change being told. For a model's whole reaction to
+  // something that is no pin (a scheduler event, a register access): nobody hears its
+  // outputs half-way through it. Nested inside a change or another batch, it is part of it.
+  template <typename F>
+  static decltype(auto) batch(F&& f);
   void set(bool high) { set(level_of(high)); }
 
   // Returns a handle for unwatch(). The on_watch hook runs first (the new watcher does not
@@ -49,6 +67,10 @@ class Signal {
   void on_watch(std::function<void()> hook) { on_watch_ = std::move(hook); }
 
  private:
+  static bool open_batch();     // true: this call opened it (nothing was being told)
+  static void close_batch();    // tells what is pending, in order, then closes
+  static void abandon_batch();  // an exception: nothing left pending, closed
+  void tell(Level level);
   std::string name_;
   Level level_;
   std::vector<Watcher> watchers_;  // unwatched slots hold an empty function
@@ -57,5 +79,26 @@ class Signal {
   const void* provider_context_ = nullptr;
   std::function<void()> on_watch_;
 };
+
+template <typename F>
+decltype(auto) Signal::batch(F&& f) {
+  if (!open_batch()) return f();
+  struct Abandon {
+    bool armed = true;
+    ~Abandon() {
+      if (armed) abandon_batch();
+    }
+  } abandon;
+  if constexpr (std::is_void_v<decltype(f())>) {
+    f();
+    abandon.armed = false;
+    close_batch();
+  } else {
+    auto result = f();
+    abandon.armed = false;
+    close_batch();
+    return result;
+  }
+}
 
 }  // namespace sercon::sim
