@@ -31,10 +31,12 @@ typedef struct sercon_fibre sercon_fibre;
 
 typedef enum sercon_status {
   SERCON_OK = 0,
-  SERCON_ERR_ARGUMENT = -1, /* NULL pointer, bad config, bad pin or level */
-  SERCON_ERR_RANGE = -2,    /* address beyond the register or RAM space, time in the past */
-  SERCON_ERR_PIN = -3,      /* the pin cannot be driven: an output, or driven by the chip */
-  SERCON_ERR_INTERNAL = -4  /* a failure inside the model (please report it) */
+  SERCON_ERR_ARGUMENT = -1,   /* NULL pointer, bad config, bad pin or level */
+  SERCON_ERR_RANGE = -2,      /* address beyond the register or RAM space, time in the past */
+  SERCON_ERR_PIN = -3,        /* the pin cannot be driven: an output, or driven by the chip */
+  SERCON_ERR_INTERNAL = -4,   /* a failure inside the model (please report it) */
+  SERCON_ERR_UNSUPPORTED = -5 /* a situation the model does not simulate, e.g. a ring
+                                 where every node repeats (the message says which) */
 } sercon_status;
 
 typedef enum sercon_variant { SERCON_VARIANT_816 = 0, SERCON_VARIANT_410B = 1 } sercon_variant;

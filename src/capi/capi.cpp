@@ -13,6 +13,7 @@
 #include "sercon/chip/pins.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/ring/fibre.hpp"
+#include "sercon/sim/model_limit.hpp"
 #include "sercon/sim/scheduler.hpp"
 #include "sercon/sim/scoped_count.hpp"
 
@@ -68,6 +69,8 @@ auto guarded(const char* what, Body body) -> decltype(body()) {
     return static_cast<Result>(fail(SERCON_ERR_RANGE, std::string(what) + ": " + e.what()));
   } catch (const std::invalid_argument& e) {
     return static_cast<Result>(fail(SERCON_ERR_ARGUMENT, std::string(what) + ": " + e.what()));
+  } catch (const sercon::sim::ModelLimit& e) {
+    return static_cast<Result>(fail(SERCON_ERR_UNSUPPORTED, std::string(what) + ": " + e.what()));
   } catch (const std::exception& e) {
     return static_cast<Result>(fail(SERCON_ERR_INTERNAL, std::string(what) + ": " + e.what()));
   } catch (...) {

@@ -9,6 +9,7 @@
 #include "sercon/chip/serial_unit_monitor.hpp"
 #include "sercon/chip/serial_unit_receiver_inline.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
+#include "sercon/sim/model_limit.hpp"
 #include "sercon/sim/scoped_count.hpp"
 
 namespace sercon::chip {
@@ -84,7 +85,7 @@ void SerialReceiver::announce(RxdSegment segment) {
   const bool changed = supersede(at);
   prune();
   if (timeline_.size() >= kMaxTimeline) {
-    throw std::runtime_error(
+    throw sim::ModelLimit(
         "RxD: " + std::to_string(timeline_.size()) + " changes announced ahead at " +
         std::to_string(now) +
         " ps: telegrams circle a ring where every node repeats (REPON on everywhere, the "

@@ -55,13 +55,13 @@ void expect_ok(int status) { EXPECT_EQ(status, SERCON_OK) << sercon_last_error()
 // Master + 2 slaves joined by C API fibres of kLengths, programmed and started as a host
 // would, logging every node's RECACTN and the master's IDLE.
 struct CRing {
-  CRing() {
+  explicit CRing(const std::array<double, 3>& lengths = kLengths) {
     sim = sercon_sim_new();
     sercon_chip_config config;
     sercon_chip_config_default(&config);
     for (auto& c : chips) c = sercon_chip_new(sim, &config);
     for (std::size_t i = 0; i < 3; ++i) {
-      fibres[i] = sercon_fibre_new(chips[i], 1, chips[(i + 1) % 3], kLengths[i]);
+      fibres[i] = sercon_fibre_new(chips[i], 1, chips[(i + 1) % 3], lengths[i]);
       EXPECT_NE(fibres[i], nullptr) << sercon_last_error();
       expect_ok(sercon_on_pin_change(chips[i], SERCON_PIN_RECACTN, log_change, &recactn[i]));
       program([this, i](std::uint16_t a, std::uint16_t v) { write(i, a, v); }, i == 0);
@@ -263,6 +263,23 @@ TEST(CapiFibre, BadArgumentsAreRefusedWithAMessage) {
   EXPECT_EQ(sercon_fibre_set_bit_error_rate(nullptr, 0.0, 1), SERCON_ERR_ARGUMENT);
   sercon_fibre_free(nullptr);  // ignored
   sercon_sim_free(other_sim);
+}
+
+// sercon.h SERCON_ERR_UNSUPPORTED: in a ring where every node repeats (REPON on in the
+// master too) an MST shorter than the ring delay (1 km fibres: 15 µs round, the MST 3.7 µs)
+// goes round for ever, and each cycle adds one; the model stops with a message saying so
+// (docs/serial-and-ring.md, "Ring"), and the C API does not call it a model fault.
+TEST(CapiFibre, ARingWhereEveryNodeRepeatsIsUnsupportedNotInternal) {
+  CRing c({1000.0, 1000.0, 1000.0});
+  c.write(0, kSerMode, kRepon);  // the master repeats as well
+  c.start();
+  int status = SERCON_OK;
+  for (int ms = 1; ms <= 20 && status == SERCON_OK; ++ms) {
+    status = sercon_sim_run_until(c.sim, ms * sim::kMillisecond);
+  }
+  EXPECT_EQ(status, SERCON_ERR_UNSUPPORTED);
+  EXPECT_NE(std::string(sercon_last_error()).find("every node repeats"), std::string::npos)
+      << sercon_last_error();
 }
 
 // sercon.h: inside a pin callback no fibre is made or freed; a break at now waits for the

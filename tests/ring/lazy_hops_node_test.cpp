@@ -23,6 +23,7 @@
 #include "sercon/chip/serial_unit_receiver.hpp"
 #include "sercon/ring/fibre.hpp"
 #include "sercon/ring/ring.hpp"
+#include "sercon/sim/model_limit.hpp"
 
 namespace sercon::ring {
 namespace {
@@ -341,7 +342,7 @@ TEST(LazyHops, AnOwnTelegramInARingWhereEveryNodeRepeatsIsAnErrorNotAHang) {
   try {
     s.run_until(at + 8000 * kBit);
     FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
+  } catch (const sim::ModelLimit& e) {
     EXPECT_NE(std::string(e.what()).find("every node repeats"), std::string::npos) << e.what();
   }
 }
