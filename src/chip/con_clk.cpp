@@ -44,7 +44,10 @@ void ConClk::plan(const CycleStart& start) {
   planned_ = 0;  // the time base dropped the previous cycle's event
   const std::int64_t cycle_end = start.tscyc == 0 ? kUnprogrammedCycleEnd : start.tscyc;
   const std::uint16_t at = regs_.value(kTconclk);
-  if (regs_.value(kWconclk) == 0 || at >= cycle_end) return;
+  // Taken now, as TCONCLK: a WCONCLK written within the cycle acts from the next cycle start
+  // (a 0 written after this plan would otherwise give a zero-width pulse with INT_CONCLK).
+  width_ = regs_.value(kWconclk);
+  if (width_ == 0 || at >= cycle_end) return;
   planned_ = time_base_.at_cycle_time(at, [this] { starts(); });
 }
 
@@ -53,7 +56,7 @@ void ConClk::starts() {
   active_ = true;
   drive();
   const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
-  end_.at_edge(now + regs_.value(kWconclk) * time_base_.tick_period());
+  end_.at_edge(now + width_ * time_base_.tick_period());
   interrupts_.raise(Irq::ConClk);
 }
 

@@ -126,5 +126,26 @@ TEST(ConClk, WidthOfOneCycleHasNoGap) {
             (std::vector<PinLog::Change>{{b.at_cycle_time(0, 30), Level::High}}));
 }
 
+// Register table WCONCLK "active width (µs); 0 = never", and docs/timing.md "CON_CLK"
+// (decision): TCONCLK and WCONCLK are taken at the cycle start, writes act from the next
+// one. A 0 written after the start leaves that cycle's pulse whole (no zero-width pulse,
+// no INT_CONCLK without one) and stops the next; a new width also waits for the next cycle.
+TEST(ConClk, WidthWrittenWithinACycleActsFromTheNextStart) {
+  ConClkBench b;
+  b.chip.reg_write(kTconclk, 30);
+  b.chip.reg_write(kWconclk, 5);
+  b.start_master();
+  b.write_at(10 * kMicrosecond, kWconclk, 0);
+  b.write_at((kCycle + 10) * kMicrosecond, kWconclk, 7);  // cycle 1
+  b.clear_flags();
+  EXPECT_FALSE(b.flags_at(b.at_cycle_time(2, 30) - 1, kIntConclk));
+  b.run_to(b.at_cycle_time(2, 30) + 20 * kMicrosecond);
+  EXPECT_EQ(b.pin_log.changes,
+            (std::vector<PinLog::Change>{{b.at_cycle_time(0, 30), Level::High},
+                                         {b.at_cycle_time(0, 30) + 5 * kMicrosecond, Level::Low},
+                                         {b.at_cycle_time(2, 30), Level::High},
+                                         {b.at_cycle_time(2, 30) + 7 * kMicrosecond, Level::Low}}));
+}
+
 }  // namespace
 }  // namespace sercon::chip

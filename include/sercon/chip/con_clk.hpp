@@ -1,11 +1,13 @@
 // The CON_CLK output (datasheet Table 1: "becomes active within a communication cycle.
 // Time, polarity and width are programmable"; docs/timing.md, "CON_CLK"). Planned at each
-// cycle start: active from cycle time TCONCLK (0x1A) for WCONCLK (0x1B) µs, i.e.
+// cycle start from TCONCLK and WCONCLK as they read then (writes act from the next cycle
+// start): active from cycle time TCONCLK (0x1A) for WCONCLK (0x1B) µs, i.e.
 // WCONCLK * (MCLKDIV + 1) MCLK periods; WCONCLK = 0 never; a start at or after the cycle
 // time TSCYC is dropped. POLCONCLK (0x1C bit 0): 0 active high, 1 active low. INT_CONCLK
 // when it becomes active. A start while still active restarts the width.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 
 #include "sercon/chip/chip_unit.hpp"
@@ -41,6 +43,7 @@ class ConClk : public ChipUnit {
   Output pin_;
   FieldRef polconclk_;
   bool active_ = false;
+  std::int64_t width_ = 0;  // WCONCLK (µs) taken at the cycle start
   TimeBase::CycleEvent planned_ = 0;
   TickAlarm end_;
 };
