@@ -45,7 +45,7 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
                 if (mode_ == Mode::Slave) time_base_.shift_cycle(window_.tscyc());
               }),
       next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
-      mst_send_(time_base.scheduler(), time_base.mclk(), [this] { send_mst(); }) {
+      mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.watch([this](sim::Level level) { on_cyc_clk(level); });
   time_base_.on_cycle_start(this, [](void* control, const CycleStart& start) {
@@ -62,7 +62,7 @@ CycleControl::~CycleControl() { cancel_own_events(); }
 void CycleControl::cancel_own_events() {
   next_cycle_.cancel();
   mst_send_.cancel();
-  for (auto id : recognitions_) scheduler_.cancel(id);
+  for (const Recognition& r : recognitions_) scheduler_.cancel(r.event);
   recognitions_.clear();
 }
 
@@ -125,13 +125,15 @@ void CycleControl::on_register_change(std::uint8_t address) {
 
 // Inline in the MST and CYC_CLK paths (GCC kept it a call).
 [[gnu::always_inline]] inline void CycleControl::recognise_at(sim::Time at,
-                                                              sim::Scheduler::Action action) {
+                                                              sim::Scheduler::Action action,
+                                                              bool cyc_clk) {
   // Ids of events that ran stay until a few have gathered (cancelling them is harmless):
   // one MST per cycle need not scan the list each time.
   if (recognitions_.size() >= kKeptRecognitions) {
-    std::erase_if(recognitions_, [this](auto id) { return !scheduler_.pending(id); });
+    std::erase_if(recognitions_,
+                  [this](const Recognition& r) { return !scheduler_.pending(r.event); });
   }
-  recognitions_.push_back(scheduler_.at(at, action, this));
+  recognitions_.push_back(Recognition{scheduler_.at(at, action, this), cyc_clk});
 }
 
 void CycleControl::cyc_clk_action(void* control) {
@@ -151,7 +153,7 @@ void CycleControl::mst_detected(sim::Time when) {
                                 std::to_string(scheduler_.now()) + " ps)");
   }
   if (!running_) return;
-  recognise_at(load, &CycleControl::slave_mst_action);
+  recognise_at(load, &CycleControl::slave_mst_action, false);
 }
 
 void CycleControl::slave_mst() {
@@ -169,7 +171,7 @@ void CycleControl::on_cyc_clk(sim::Level level) {
   const bool active_edge = cycpol_.on(regs_) ? !high : high;
   if (!active_edge || !running_ || mode_ != Mode::MasterCycClk) return;
   recognise_at(time_base_.mclk().nth_edge_after(scheduler_.now(), kCycClkSyncEdges),
-               &CycleControl::cyc_clk_action);
+               &CycleControl::cyc_clk_action, true);
 }
 
 void CycleControl::cyc_clk_recognised() {
@@ -198,6 +200,23 @@ void CycleControl::master_cycle_start() {
     return;
   }
   next_cycle_.at_tick(cycle_ticks_, tscyc);
+}
+
+// The MST is due TCYCSTART after its cycle's start. A cycle sends at most one MST, and
+// TCYCSTART >= TSCYC drops it (docs/timing.md): a next cycle start at this very instant
+// comes first, whatever the order of the two equal-time events.
+void CycleControl::mst_due() {
+  if (master_cycle_starts_now()) return;
+  send_mst();
+}
+
+bool CycleControl::master_cycle_starts_now() const {
+  const sim::Time now = scheduler_.now();
+  if (next_cycle_.pending() && next_cycle_.when() == now) return true;
+  for (const Recognition& r : recognitions_) {
+    if (r.cyc_clk && scheduler_.when(r.event) == now) return true;
+  }
+  return false;
 }
 
 void CycleControl::send_mst() {

@@ -135,6 +135,24 @@ TEST(MasterTimer, TcycstartBeyondTheCycleSendsNoMst) {
   EXPECT_LE(b.bench.scheduler.pending_count(), 4u);
 }
 
+// Decision (docs/timing.md, "Master with the internal timer"): a cycle sends at most one MST
+// and TCYCSTART >= TSCYC drops it. At TCYCSTART = TSCYC the MST would be due at the very
+// instant the next cycle starts: that start comes first and no MST goes out, also after an
+// MCLKDIV change has moved both events (whatever the order of equal-time events).
+TEST(MasterTimer, TcycstartEqualToTscycSendsNoMst) {
+  for (const bool divider_change : {false, true}) {
+    MasterBench b(kCycle);
+    b.write_at(0, kSerMode, kRegmode);
+    if (divider_change) {
+      b.write_at(10 * kMicrosecond, kClockDiv, kStartDelay << 8 | (kP / 2 - 1));
+      b.write_at(20 * kMicrosecond, kClockDiv, kStartDelay << 8 | (kP - 1));
+    }
+    b.run_to(5 * kMillisecond);
+    EXPECT_TRUE(b.msts.empty()) << divider_change;
+    EXPECT_FALSE(b.flags_at(b.now(), kIntCycst)) << divider_change;
+  }
+}
+
 // Leaving master mode stops the timer.
 TEST(MasterTimer, SlaveModeStopsTheTimer) {
   MasterBench b;
@@ -268,6 +286,20 @@ TEST(MasterCycClk, ResynchronisesAfterAMiss) {
   for (int k = 4; k < 8; ++k) b.cyc_clk_pulse_at(kMicrosecond + k * kCycle * kMicrosecond);
   EXPECT_EQ(b.read_at(b.now(), kIntStat) & kWindowFlags, 0);
   EXPECT_EQ(b.msts.size(), 6u);
+}
+
+// The same rule with CYC_CLK: an edge whose cycle starts exactly TCYCSTART after the last
+// start drops the last cycle's MST (its next cycle started first); the new cycle sends its
+// own, TCYCSTART later.
+TEST(MasterCycClk, CycleStartAtTheMstInstantDropsTheMst) {
+  MasterBench b(100);
+  b.write_at(0, kSerMode, kRegmode | kPresync);
+  b.cyc_clk_pulse_at(kMicrosecond);
+  const Time start = b.cyc_clk_start(kMicrosecond);
+  const Time next = start + 100 * kMicrosecond;  // an MCLK edge
+  b.cyc_clk_pulse_at(next - 2 * b.mclk());
+  b.run_to(next + 200 * kMicrosecond);
+  EXPECT_EQ(b.msts, (std::vector<Time>{next + 100 * kMicrosecond}));
 }
 
 // In CYC_CLK mode the timer does not run: edges closer than TSCYC each start a cycle.

@@ -56,13 +56,15 @@ class CycleControl : public ChipUnit {
   void on_register_change(std::uint8_t address);
   void on_cyc_clk(sim::Level level);
   // `action(this)` at `at` (function + context: no std::function per MST).
-  void recognise_at(sim::Time at, sim::Scheduler::Action action);
+  void recognise_at(sim::Time at, sim::Scheduler::Action action, bool cyc_clk);
   static void cyc_clk_action(void* control);
   static void slave_mst_action(void* control);
   void start_timer_now();
   void master_cycle_start();
   void cyc_clk_recognised();
   void slave_mst();
+  void mst_due();
+  bool master_cycle_starts_now() const;
   void send_mst();
   void on_cycle_start(const CycleStart& start);
   void on_divider_change(Edge edge, std::int64_t period);
@@ -83,7 +85,11 @@ class CycleControl : public ChipUnit {
   DividerTicks cycle_ticks_;  // master: restarted at each cycle start
   TickAlarm next_cycle_;
   TickAlarm mst_send_;
-  std::vector<sim::Scheduler::EventId> recognitions_;  // MSTs / CYC_CLK edges in the synchroniser
+  struct Recognition {
+    sim::Scheduler::EventId event;
+    bool cyc_clk;  // a CYC_CLK edge (a master's cycle start), not a slave's MST
+  };
+  std::vector<Recognition> recognitions_;  // MSTs / CYC_CLK edges in the synchroniser
   std::vector<std::function<void()>> send_mst_listeners_;
 };
 
