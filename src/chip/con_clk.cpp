@@ -27,8 +27,9 @@ ConClk::ConClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
   time_base_.on_cycle_start(this, [](void* con_clk, const CycleStart& start) {
     static_cast<ConClk*>(con_clk)->plan(start);
   });
+  // A reset's polarity is driven by reset(), which ends a pulse in progress first.
   regs_.on_change([this](std::uint8_t address) {
-    if (address == polconclk_.address) drive();
+    if (address == polconclk_.address && !regs_.resetting()) drive();
   });
 }
 

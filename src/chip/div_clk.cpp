@@ -29,9 +29,10 @@ DivClk::DivClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
   time_base_.on_cycle_start(this, [](void* div_clk, const CycleStart& start) {
     static_cast<DivClk*>(div_clk)->plan(start);
   });
-  // A new polarity shows at once, also on an idle output.
+  // A new polarity shows at once, also on an idle output (a reset's is driven by reset(),
+  // which ends a pulse in progress first).
   regs_.on_change([this](std::uint8_t address) {
-    if (address == poldivclk_.address) drive();
+    if (address == poldivclk_.address && !regs_.resetting()) drive();
   });
   // Delta spec 2.7: a programming of NDIVCLK != 0 restarts mode 1 "after the first cycle",
   // also when the 0 before it lasted less than a cycle: every moment the register holds

@@ -42,7 +42,9 @@ Interrupts::Interrupts(RegisterFile& regs, Output int0, Output int1)
   regs_.on_change([this, polarity](std::uint8_t address) {
     const bool routed =
         address == polarity || (address >= kIntStat && address <= kIen1B) || address == kWdCtrl;
-    if (routed) refresh();
+    // A reset's values are driven by reset(), once all of them are in (INTxPOL is reset
+    // before the latches: no pulse out of the half-reset registers).
+    if (routed && !regs_.resetting()) refresh();
   });
 }
 

@@ -57,6 +57,11 @@ void RegisterFile::on_change(std::function<void(std::uint8_t)> listener) {
 }
 
 void RegisterFile::reset() {
+  resetting_ = true;
+  struct Done {
+    bool& flag;
+    ~Done() { flag = false; }
+  } done{resetting_};
   for (std::uint8_t a = 0; a < kRegisterCount; ++a) {
     const std::uint16_t before = values_[a];
     values_[a] = masks_[a].reset;

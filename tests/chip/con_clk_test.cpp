@@ -147,5 +147,30 @@ TEST(ConClk, WidthWrittenWithinACycleActsFromTheNextStart) {
                                          {b.at_cycle_time(2, 30) + 7 * kMicrosecond, Level::Low}}));
 }
 
+// Register table POLCONCLK (resets to 0: "CON_CLK 1-active") and docs/chip.md "Resets"
+// (every reset sets every output inactive): a reset while an active-low CON_CLK is active
+// leaves it low, now the idle level: no change at all, not a zero-width pulse out of the
+// polarity being reset while the output was still active.
+TEST(ConClk, ResetWhileActiveLowIsNoPulse) {
+  for (const bool by_pin : {false, true}) {
+    ConClkBench b;
+    b.chip.reg_write(kTconclk, 30);
+    b.chip.reg_write(kWconclk, 5);
+    b.chip.reg_write(kConCtrl, 1);
+    b.start_master();
+    b.run_to(b.at_cycle_time(0, 30) + kMicrosecond);  // active
+    ASSERT_EQ(b.pin(Pin::CON_CLK).level(), Level::Low);
+    b.pin_log.changes.clear();
+    if (by_pin) {
+      b.chip.drive(Pin::RSTN, Level::Low);
+    } else {
+      b.chip.reg_write(kSerMode, 0x0002);  // SWRST
+    }
+    b.run_to(2 * kCycle * kMicrosecond);
+    EXPECT_TRUE(b.pin_log.changes.empty()) << by_pin;
+    EXPECT_EQ(b.pin(Pin::CON_CLK).level(), Level::Low);
+  }
+}
+
 }  // namespace
 }  // namespace sercon::chip

@@ -308,5 +308,29 @@ TEST(DivClk, WorksWithoutAChip) {
   EXPECT_TRUE(int0.high());
 }
 
+// Delta spec 2.11.1.3 (POLDIVCLK resets to 0: "DIV_CLK pulse 1-active") and docs/chip.md
+// "Resets" (every reset sets every output inactive): a reset in the middle of an active-low
+// pulse leaves DIV_CLK low, now the idle level: no change at all, not a zero-width pulse out
+// of the polarity being reset while the pulse was still on.
+TEST(DivClk, ResetWithinAnActiveLowPulseIsNoPulse) {
+  for (const bool by_pin : {false, true}) {
+    DivClkBench b;
+    b.chip.reg_write(kTdivclk, 20);
+    b.chip.reg_write(kDivCtrl, kPoldivclk | 1);
+    b.start_master();
+    b.run_to(b.at_cycle_time(0, 20) + b.mclk());  // inside the pulse
+    ASSERT_EQ(b.pin(Pin::DIV_CLK).level(), Level::Low);
+    b.pin_log.changes.clear();
+    if (by_pin) {
+      b.chip.drive(Pin::RSTN, Level::Low);
+    } else {
+      b.chip.reg_write(kSerMode, 0x0002);  // SWRST
+    }
+    b.run_to(b.cycle_start(2));
+    EXPECT_TRUE(b.pin_log.changes.empty()) << by_pin;
+    EXPECT_EQ(b.pin(Pin::DIV_CLK).level(), Level::Low);
+  }
+}
+
 }  // namespace
 }  // namespace sercon::chip

@@ -113,5 +113,36 @@ TEST(Interrupts, PinsFloatWhileOutz) {
   EXPECT_EQ(b.pin(Pin::INT1).level(), Level::High);
 }
 
+// Datasheet Table 1 (INT0 / INT1 "active low or active high ... polarity [is]
+// programmable"), docs/chip.md "Resets" (every reset sets every output inactive; INTxPOL
+// resets to active high) and sim/signal.hpp (watchers hear every change): an active-low
+// INT0 / INT1 that is asserted (low) when the chip is reset is low after it too, now
+// inactive: no change at all, not a zero-width pulse out of INTxPOL being reset before the
+// latches.
+TEST(Interrupts, ResetOfAnAssertedActiveLowPinIsNoPulse) {
+  for (const bool by_pin : {false, true}) {
+    TimingBench b;
+    PinLog int0(b.bench.scheduler, b.pin(Pin::INT0));
+    PinLog int1(b.bench.scheduler, b.pin(Pin::INT1));
+    b.chip.reg_write(kTpCtrl, kInt0pol | kInt1pol);
+    b.chip.reg_write(kIen0A, kIntRend);
+    b.chip.reg_write(kIen1A, kIntRend);
+    b.interrupts().raise(Irq::Rend);
+    ASSERT_EQ(b.pin(Pin::INT0).level(), Level::Low);
+    ASSERT_EQ(b.pin(Pin::INT1).level(), Level::Low);
+    int0.changes.clear();
+    int1.changes.clear();
+    if (by_pin) {
+      b.chip.drive(Pin::RSTN, Level::Low);
+    } else {
+      b.chip.reg_write(kSerMode, 0x0002);  // SWRST
+    }
+    EXPECT_TRUE(int0.changes.empty()) << by_pin;
+    EXPECT_TRUE(int1.changes.empty()) << by_pin;
+    EXPECT_EQ(b.pin(Pin::INT0).level(), Level::Low);
+    EXPECT_EQ(b.pin(Pin::INT1).level(), Level::Low);
+  }
+}
+
 }  // namespace
 }  // namespace sercon::chip

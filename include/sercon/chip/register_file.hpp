@@ -66,6 +66,12 @@ class RegisterFile {
 
   // Table reset values for every register (pins and variant-specific bits: see Chip).
   void reset();
+  // True while reset() loads them, one register after the other. A listener that drives a
+  // pin from several registers or from its unit's state (INT0 from INTxPOL and INTSTAT,
+  // DIV_CLK from POLDIVCLK and a pulse in progress) leaves the pin alone then: the unit's
+  // reset (ChipUnit::reset) drives it once every register holds its reset value, so a pin
+  // gets no zero-width pulse out of the half-reset registers.
+  bool resetting() const { return resetting_; }
 
   const RegisterMasks& masks(std::uint8_t address) const { return masks_.at(address); }
 
@@ -73,6 +79,7 @@ class RegisterFile {
   void changed(std::uint8_t address);
 
   Variant variant_;
+  bool resetting_ = false;
   std::array<RegisterMasks, kRegisterCount> masks_{};
   std::array<std::uint16_t, kRegisterCount> values_{};
   std::array<std::uint16_t, kRegisterCount> locked_{};
