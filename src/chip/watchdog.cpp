@@ -36,7 +36,8 @@ Watchdog::Watchdog(TimeBase& time_base, Interrupts& interrupts, Output wdogn)
       regmode_(field_ref("REGMODE", regs_.variant())),
       entmt_(field_ref("ENTMT", regs_.variant())),
       phas0_(field_ref("PHAS0", regs_.variant())),
-      expiry_(time_base.scheduler(), time_base.mclk(), [this] { expire(); }),
+      expiry_(time_base.scheduler(), time_base.mclk(), [this] { counted_out(); }),
+      expires_(time_base.scheduler(), time_base.mclk(), [this] { expire(); }),
       output_end_(time_base.scheduler(), time_base.mclk(), [this] { drive_output(false); }) {
   if (!present_) return;
   regs_.on_write(kWdCtrl,
@@ -56,6 +57,7 @@ void Watchdog::reset(ResetCause) {
   running_ = false;
   protecting_ = false;
   expiry_.cancel();
+  expires_.cancel();
   output_end_.cancel();
   if (present_) drive_output(false);
 }
@@ -87,6 +89,7 @@ void Watchdog::mst_started() {
 // Delta spec 2.6.3: the down counter is preset with TWDOG and counts at the MCLKDIV rate
 // to 0000H. TWDOG = 0 is 0000H already: the watchdog expires at once.
 void Watchdog::load() {
+  expires_.cancel();  // a trigger at the edge the count ran out loads it again
   const Edge now = time_base_.mclk().first_at_or_after(time_base_.scheduler().now());
   const std::int64_t period = time_base_.tick_period();
   ticks_ = DividerTicks::started_at(now, period, period);
@@ -98,6 +101,14 @@ void Watchdog::load() {
   }
 }
 
+// The count has reached 0000H at this edge. A trigger at the same edge (an MST start, whose
+// event may run before or after this one) loads the counter again and wins (docs/timing.md,
+// "Watchdog"): the expiry is decided after the events already due at this instant.
+void Watchdog::counted_out() {
+  const sim::Time now = time_base_.scheduler().now();
+  expires_.at_edge(time_base_.mclk().last_at_or_before(now));
+}
+
 void Watchdog::expire() {
   running_ = false;
   start_.set(regs_, false);  // WDOG_STAT = 0: "it switches off automatically"
@@ -107,8 +118,9 @@ void Watchdog::expire() {
   regs_.lock(entmt_.address, entmt_.mask, true);
   regs_.lock(phas0_.address, phas0_.mask, true);
   protecting_ = true;
-  // Raised last: the INT0/INT1 pin callbacks run inside raise() and may clear INT_WDOG,
-  // which must find the lock in place to lift it.
+  // Raised after the locks: a handler that clears INT_WDOG (from a pin callback, which the
+  // chip runs when this event is done, or from an output callback of a unit built without
+  // a chip, which runs inside raise()) must find the lock in place to lift it.
   interrupts_.raise(Irq::Wdog);
   if (!wdout_.on(regs_)) return;
   // Delta spec 2.6.1: WDOGN "remains active for the next minimum 2, maximum 3 periods".

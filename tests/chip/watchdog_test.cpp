@@ -223,6 +223,30 @@ TEST(Watchdog, MstStartTriggersWithWdogMstenInMasterMode) {
   }
 }
 
+// 2.6.3: "Reaching the counter value 0000H, the watchdog is set. Each trigger event again
+// loads the counter to the value of TWDOG." Decision (docs/timing.md, "Watchdog"): a
+// trigger at the very edge at which the count reaches 0000H loads it again (the load comes
+// first), whatever the order of the equal-time events. TWDOG = TSCYC with MST triggering:
+// every MST comes exactly when the count runs out, so the watchdog stays quiet while MSTs
+// come (TCYCSTART = 0: the MST at the cycle start; 40: from its own alarm) and expires
+// T_WDOG after the last one when they stop.
+TEST(Watchdog, MstAtTheExpiryEdgeTriggersFirst) {
+  for (const std::int64_t tcycstart : {0, 40}) {
+    WatchdogBench b;
+    b.chip.reg_write(kTscyc0, 250);
+    b.chip.reg_write(kTcycstart, static_cast<std::uint16_t>(tcycstart));
+    b.chip.reg_write(kWdCtrl, kWdogMsten);
+    b.start_at(0, 250);
+    b.chip.reg_write(kSerMode, kRegmode);  // cycles at k * 250 µs, MSTs TCYCSTART later
+    const Time stop = 2 * kMillisecond + 100 * kMicrosecond;
+    EXPECT_FALSE(b.expired_at(stop)) << tcycstart;
+    b.chip.reg_write(kSerMode, 0);  // slave: no more MSTs
+    const Time last_mst = 2 * kMillisecond + tcycstart * kMicrosecond;
+    EXPECT_FALSE(b.expired_at(last_mst + b.t_wdog(250) - 1)) << tcycstart;
+    EXPECT_TRUE(b.expired_at(last_mst + b.t_wdog(250))) << tcycstart;
+  }
+}
+
 // 2.11.2 WDOG_MSTEN: "Slave: No Function". Received MSTs do not trigger.
 TEST(Watchdog, MstDoesNotTriggerInSlaveMode) {
   WatchdogBench b;

@@ -40,12 +40,13 @@ class Watchdog : public ChipUnit {
   bool running() const { return running_; }
   bool output_active() const { return output_low_; }
   // Expiry time while running.
-  sim::Time expires_at() const { return expiry_.when(); }
+  sim::Time expires_at() const { return expiry_.pending() ? expiry_.when() : expires_.when(); }
 
  private:
   void on_control_write(std::uint16_t written);
   void on_trigger_write(std::uint16_t written);
   void load();
+  void counted_out();
   void expire();
   void drive_output(bool low);
 
@@ -59,7 +60,8 @@ class Watchdog : public ChipUnit {
   bool protecting_ = false;  // ENTMT and PHAS0 locked until INT_WDOG is cleared
   bool output_low_ = false;
   DividerTicks ticks_;
-  TickAlarm expiry_;
+  TickAlarm expiry_;   // the count reaches 0000H
+  TickAlarm expires_;  // then, after the other events of that edge: unless one triggered
   TickAlarm output_end_;
 };
 
