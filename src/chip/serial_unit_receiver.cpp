@@ -121,15 +121,19 @@ void SerialReceiver::pass_to_repeater(const Entry& e) {
 }
 
 // The entry and what was announced after it go again, in order (an entry announced after
-// it went straight on, and must not be overtaken by this late one).
+// it went straight on, and must not be overtaken by this late one). An entry superseded
+// meanwhile goes nowhere: what replaced it went on when it was announced (and may lie in
+// the past by now, so it must not go again).
 void SerialReceiver::forward_deferred(std::uint64_t serial) {
   if (!unit_.running()) return;
   absorb_lazy();
   std::vector<RxdSegment> segments;
+  bool still_there = false;
   for (const Entry& e : timeline_) {
+    still_there = still_there || e.serial == serial;
     if (e.serial >= serial) segments.push_back(e.segment);
   }
-  if (segments.empty()) return;  // superseded meanwhile
+  if (!still_there) return;
   const sim::ScopedCount link(chain_depth);
   for (const RxdSegment& s : segments) unit_.repeater().input(s);
 }

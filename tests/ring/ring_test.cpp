@@ -13,6 +13,7 @@
 
 #include "ring_bench.hpp"
 #include "sercon/chip/register_map.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
 
 namespace sercon::ring {
 namespace {
@@ -162,6 +163,42 @@ TEST(Ring, TxdSwitchedBackOnPassesOnWhatIsAnnouncedWhenEveryNodeRepeats) {
   EXPECT_EQ(at_slave[0].start, repeated(first.start, t) + ring.fibre(0).delay());
   EXPECT_EQ(at_slave[1].frame.address, 0x08);
   EXPECT_EQ(at_slave[1].start, repeated(second.start, t) + ring.fibre(0).delay());
+}
+
+// Docs "Depth guard" (docs/serial-and-ring.md): in a ring where every node repeats, a
+// telegram announced round it 600 receivers deep goes on from an event when it reaches the
+// next RxD. When the node before that receiver changes its line meanwhile (TXLIGHT, REPON:
+// datasheet Table 1, delta spec 2.3.3), what it announces supersedes the far-off lap, and
+// the event finds in the receiver's timeline only what replaced it, which went on when it
+// was announced. The event must do nothing then; it passed those changes on again, long
+// past: the next fibre threw std::invalid_argument out of Scheduler::run_until, 3 ms after
+// the ring had been opened (found by fuzz/ring_fuzz).
+TEST(Ring, OpeningARingWhereEveryNodeRepeatsLeavesNoDeferredForwardBehind) {
+  sim::Scheduler s;
+  RingOptions o;
+  o.fibre_lengths_m = {1000.0, 1000.0};  // a lap (10 µs) longer than the telegram
+  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 1, o);
+  ring.switch_on_lines();
+  chip::Chip& m = ring.master();
+  const std::uint16_t repon = chip::find_field("REPON", m.variant())->mask();
+  m.reg_write(0x01, static_cast<std::uint16_t>(m.reg_read(0x01) | repon));
+  const Time t = bit_period_of(16);
+  s.run_until(1000 * t);
+  const chip::LineBurst lap{s.now() + t, t, testing::telegram_bits(0x07, {0x55, 0x55})};
+  ring.serial(0).rxd().line_burst(lap);  // circles: announced 300 laps (3 ms) ahead at once
+  // The master's receiver is the 601st of that call chain: it goes on from an event 3 ms
+  // ahead. The slave before it goes dark, then sends its own idle fill.
+  s.run_until(s.now() + 50 * sim::kMicrosecond);
+  chip::Chip& slave = ring.slave(1);
+  slave.reg_write(0x02, 0x0001);  // TxD1 driven, TXLIGHT off
+  s.run_until(s.now() + 50 * sim::kMicrosecond);
+  slave.reg_write(0x01, static_cast<std::uint16_t>(slave.reg_read(0x01) & ~repon));
+  slave.reg_write(0x02, 0x0041);  // TXLIGHT on: the slave's own idle fill
+  const Time opened = s.now();
+  EXPECT_NO_THROW(s.run_until(opened + 5 * sim::kMillisecond));
+  // What leaves the master from then on is the slave's idle fill, repeated.
+  EXPECT_FALSE(ring.serial(0).receiver().input().is_burst);
+  EXPECT_EQ(ring.serial(0).receiver().input().condition, chip::LineCondition::Idle);
 }
 
 // Decision (own telegram wins): a slave that sends while a telegram passes cuts it; the
