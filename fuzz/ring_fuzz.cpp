@@ -23,9 +23,10 @@
 //  3. The telegram processor writes only the DPRAM words it is documented to write
 //     (docs/telegram-processing.md §1-§5): word 0 and NERR of receive headers on the walk,
 //     word 0 of transmit headers on the walk, receive container buffers, NMSTERR (word 10).
-//     Every other word keeps its value through a time step. Checked when the lists the walk
-//     can reach from COMPT0/COMPT1 do not overlap (a written word that is also a structure
-//     word could change the walk mid-step).
+//     Every other word keeps its value through a time step. The walk keeps what it read, so
+//     every header reachable so far counts, and the walks go on from the pointer each of
+//     them had (writable_words). Checked when those structures do not overlap (a written
+//     word that is also a structure word could change the walk mid-step).
 //  4. Determinism: A and C give identical observations (docs/telegram-processing.md, "Events
 //     at the same picosecond": every tie is deterministic; docs/serial-and-ring.md: a bits
 //     object belongs to one simulation, recycled ones carry nothing of their past).
@@ -489,10 +490,11 @@ class Tap final : public LineListener {
 struct Outcome {
   std::deque<Stream> streams;
   std::uint64_t events = 0;
-  std::size_t ops_done = 0;  // ops run whole
-  std::optional<Time> cut;   // the budget ran out in op ops_done at this time
-  bool circled = false;      // the documented depth-guard exception
-  bool over_limit = false;   // run B past its event limit
+  std::size_t ops_done = 0;     // ops run whole
+  std::optional<Time> cut;      // the budget ran out in op ops_done at this time
+  bool circled = false;         // the documented depth-guard exception
+  bool over_limit = false;      // run B past its event limit
+  std::uint64_t lazy_hops = 0;  // taken by all chips
 };
 
 class Sim {
@@ -607,6 +609,7 @@ class Sim {
       violated(std::string("exception: ") + e.what());
     }
     out.events = events_;
+    for (std::size_t i = 0; i < chips_.size(); ++i) out.lazy_hops += serial(i).lazy_hops_taken();
     if (std::getenv("RING_FUZZ_STATS") != nullptr) {
       std::fprintf(stderr, "%s: %zu nodes, %zu ops done of %zu, %llu events, %.1f us%s\n",
                    bus_ ? "bus" : "ring", chips_.size(), out.ops_done, ops.size(),
@@ -780,7 +783,18 @@ class Sim {
     mark(1, kStruct);
     mark(10, kWrite);  // NMSTERR
     std::vector<bool> visited(size, false);
-    for (std::size_t start : {std::size_t{ram[0] & 0x7FFu}, std::size_t{ram[1] & 0x7FFu}}) {
+    // The walks start at COMPT0 / COMPT1 and at the next item of every header seen so far
+    // (a walk that read a header before the host rewrote the list goes on from the pointer
+    // it read then, into the RAM as it is now).
+    std::vector<bool>& after = next_[node];
+    after.resize(size, false);
+    std::vector<std::size_t> starts = {std::size_t{ram[0] & 0x7FFu}, std::size_t{ram[1] & 0x7FFu}};
+    for (std::size_t a = 0; a < size; ++a) {
+      if (after[a]) starts.push_back(a);
+    }
+    while (!starts.empty()) {
+      const std::size_t start = starts.back();
+      starts.pop_back();
       for (std::size_t at = start; at < size && !visited[at];) {
         visited[at] = true;
         const unsigned kind = ram[at] >> 14;
@@ -793,7 +807,9 @@ class Sim {
         seen[at] |= combo(ram[at]);
         for (std::size_t k = 1; k <= 3; ++k) mark(at + k, kStruct);
         if (at + 3 >= size) break;
-        at = ram[at + 3] & 0x7FF;
+        const std::size_t next = ram[at + 3] & 0x7FF;
+        if (next < size) after[next] = true;
+        at = next;
       }
     }
     for (std::size_t at = 0; at < size; ++at) {
@@ -874,7 +890,8 @@ class Sim {
       for (std::size_t a = 0; a < now.size(); ++a) {
         if (!(*writable[i])[a] && now[a] != before[i][a]) {
           if (trace_on()) {
-            for (std::size_t k = 0; k < 0x60 && k < now.size(); ++k) {
+            for (std::size_t k = 0; k < now.size(); ++k) {
+              if (k > 1 && (k + 0x30 < a || k > a + 0x10)) continue;
               std::fprintf(stderr, "  word 0x%03zx: 0x%04x -> 0x%04x%s\n", k, before[i][k], now[k],
                            (*writable[i])[k] ? " (writable)" : "");
             }
@@ -989,6 +1006,7 @@ class Sim {
   std::vector<Chip*> chips_;
   std::vector<std::size_t> bus_nodes_;
   std::vector<std::vector<std::uint8_t>> seen_ = std::vector<std::vector<std::uint8_t>>(4);
+  std::vector<std::vector<bool>> next_ = std::vector<std::vector<bool>>(4);
   std::uint64_t events_ = 0;
   bool every_node_repeated_ = false;
   bool closed_ = false;
@@ -1016,6 +1034,29 @@ void compare(const Outcome& a, const Outcome& b, const char* what) {
   }
 }
 
+// What the runs came to, printed at exit (campaign figures for docs/fuzzing.md).
+struct Tally {
+  std::uint64_t inputs = 0, compared = 0, circled = 0, over_limit = 0, lazy_inputs = 0;
+  Tally() {
+    std::atexit([] {
+      const Tally& t = tally();
+      std::fprintf(stderr,
+                   "ring_fuzz: %llu inputs, %llu compared lazy / not lazy (%llu of them took lazy "
+                   "hops), %llu ended by the depth guard, %llu not compared (run B past its "
+                   "event limit)\n",
+                   static_cast<unsigned long long>(t.inputs),
+                   static_cast<unsigned long long>(t.compared),
+                   static_cast<unsigned long long>(t.lazy_inputs),
+                   static_cast<unsigned long long>(t.circled),
+                   static_cast<unsigned long long>(t.over_limit));
+    });
+  }
+  static Tally& tally() {
+    static Tally t;
+    return t;
+  }
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -1031,7 +1072,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::optional<std::size_t> stop_op;
   if (a.cut) stop_op = a.ops_done;
-  if (a.circled) return 0;  // the documented exception: where it comes depends on bookings
+  Tally& tally = Tally::tally();
+  ++tally.inputs;
+  if (a.circled) {  // the documented exception: where it comes depends on bookings
+    ++tally.circled;
+    return 0;
+  }
   Outcome c;
   {
     Sim sim(setup, true);
@@ -1046,7 +1092,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     Sim sim(setup, false);
     b = sim.run(ops, stop_op, a.cut, hard_limit, false);
   }
-  if (b.circled || b.over_limit) return 0;
+  if (b.circled || b.over_limit) {
+    ++(b.circled ? tally.circled : tally.over_limit);
+    return 0;
+  }
   compare(a, b, "lazy hops: runs A (lazy) and B (no lazy hops) differ");
+  ++tally.compared;
+  if (a.lazy_hops > 0) ++tally.lazy_inputs;
   return 0;
 }
