@@ -611,10 +611,13 @@ class Sim {
     out.events = events_;
     for (std::size_t i = 0; i < chips_.size(); ++i) out.lazy_hops += serial(i).lazy_hops_taken();
     if (std::getenv("RING_FUZZ_STATS") != nullptr) {
-      std::fprintf(stderr, "%s: %zu nodes, %zu ops done of %zu, %llu events, %.1f us%s\n",
+      std::fprintf(stderr,
+                   "%s: %zu nodes, %zu ops done of %zu, %llu events, %llu telegram-processor RAM "
+                   "accesses, %.1f us%s\n",
                    bus_ ? "bus" : "ring", chips_.size(), out.ops_done, ops.size(),
-                   static_cast<unsigned long long>(events_), static_cast<double>(s_.now()) / kUs,
-                   out.cut ? " (cut)" : "");
+                   static_cast<unsigned long long>(events_),
+                   static_cast<unsigned long long>(tp_accesses()),
+                   static_cast<double>(s_.now()) / kUs, out.cut ? " (cut)" : "");
       for (std::size_t i = 0; i < chips_.size(); ++i) {
         std::fprintf(stderr,
                      "  node %zu: lazy hops %llu, INTSTAT 0x%04x, PHASE 0x%04x, NMSTERR %u\n", i,
