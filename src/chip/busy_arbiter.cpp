@@ -19,18 +19,27 @@ void BusyArbiter::beyond_the_ram() { throw std::out_of_range("BusyArbiter: word 
 bool BusyArbiter::host_access(std::uint16_t word) {
   const sim::Time now = scheduler_.now();
   const sim::Time used = last_used_.at(word);
+  host_word_ = word;
+  host_time_ = now;
   if (used < 0) return false;  // never used
-  const auto period = period_index(now);
-  if (used != now && period_index(used) != period) return false;
+  if (used != now && period_index(used) != period_index(now)) return false;
+  pull_low(now);
+  return true;
+}
+
+void BusyArbiter::internal_meets_host(sim::Time now) {
+  if (host_time_ == now) pull_low(now);
+}
+
+void BusyArbiter::pull_low(sim::Time now) {
   // Low now, high at the next MCLK edge: at most one MCLK period (delta spec 2.8).
-  const sim::Time end = mclk_.time_of(period + 1);
+  const sim::Time end = mclk_.time_of(period_index(now) + 1);
   scheduler_.cancel(release_event_);
   release_event_ = scheduler_.at(end, [this] { release(); });
   if (!busy_) {
     busy_ = true;
     drive_busyn_(true);
   }
-  return true;
 }
 
 void BusyArbiter::release() {
@@ -43,6 +52,7 @@ void BusyArbiter::reset() {
   scheduler_.cancel(release_event_);
   release_event_ = {};
   std::fill(last_used_.begin(), last_used_.end(), -1);
+  host_word_ = kNoWord;
   busy_ = false;
   drive_busyn_(false);
 }

@@ -117,6 +117,35 @@ TEST(Busy, ResetReleasesBusyn) {
   EXPECT_EQ(bench.chip->pin(Pin::BUSYN).level(), Level::High);
 }
 
+// Table 1 BUSYN: an access "performed simultaneously to an access to the same memory
+// location by the internal telegram processing". Two events at the same picosecond run in
+// the order they were scheduled, which the chip cannot know: a µP access whose event runs
+// just before the telegram processor's at the same instant collides as the reverse order
+// does (BusResultReportsTheCollision: the µP's access itself is not delayed). A telegram
+// processor access later in the period does not pull BUSYN for an access already made
+// (datasheet 3.5.5 / 3.5.7 t_MBSY: BUSYN falls within 15 ns of the strobe's start).
+TEST(Busy, InternalAccessAtTheInstantOfAHostAccessCollidesWhicheverRunsFirst) {
+  for (const int kind : {0, 1, 2}) {      // one word, a run over it, a word beside it
+    ChipOnBench bench(mclk(32'000'000));  // period 3 runs 93 750 .. 125 000
+    EdgeLog log(bench, Pin::BUSYN);
+    Chip& chip = *bench.chip;
+    bench.scheduler.at(100'000, [&chip] { chip.ram_read(0x0123); });
+    bench.scheduler.at(100'000, [&chip, kind] {
+      const std::array<std::uint16_t, 3> words{1, 2, 3};
+      if (kind == 0) chip.tp_ram_write(0x0123, 0x4444);
+      if (kind == 1) chip.tp_ram_write_run(0x0122, words);
+      if (kind == 2) chip.tp_ram_write(0x0124, 0x4444);
+    });
+    bench.scheduler.at(110'000, [&chip] { chip.tp_ram_read(0x0123); });  // later: no effect
+    bench.scheduler.run_until(200'000);
+    using E = std::pair<Time, Level>;
+    const std::vector<E> expected =
+        kind == 2 ? std::vector<E>{}
+                  : std::vector<E>{{100'000, Level::Low}, {125'000, Level::High}};
+    EXPECT_EQ(log.edges, expected) << kind;
+  }
+}
+
 TEST(Busy, InternalPortCountsItsAccessesNotTheHosts) {
   ChipOnBench bench;
   bench.chip->tp_ram_read(1);

@@ -1,7 +1,9 @@
 // BUSYN (datasheet Table 1, 3.5.5/3.5.7; delta spec 2.8): when the µP touches a RAM word
 // that the telegram processor uses in the same MCLK period, BUSYN goes low at once and
 // high again at the end of that MCLK period, so it is never low for more than one MCLK.
-// MCLK period k runs from MCLK edge k to edge k + 1 (MclkGrid).
+// MCLK period k runs from MCLK edge k to edge k + 1 (MclkGrid). An internal access at the
+// very instant of a µP access to the same word collides too, whichever of the two ran
+// first: equal-time events run in no order the chip could know (Table 1: "simultaneously").
 #pragma once
 
 #include <cstddef>
@@ -28,7 +30,11 @@ class BusyArbiter {
   // arbiter.
   class Marks {
    public:
-    void mark(std::uint16_t word) const { used_[word] = scheduler_->now(); }
+    void mark(std::uint16_t word) const {
+      const sim::Time now = scheduler_->now();
+      used_[word] = now;
+      if (word == arbiter_->host_word_) arbiter_->internal_meets_host(now);
+    }
     void mark_run(std::uint16_t first, std::size_t count) const {
       mark_run(first, count, [](std::size_t) {});
     }
@@ -38,6 +44,7 @@ class BusyArbiter {
     template <typename Each>
     void mark_run(std::uint16_t first, std::size_t count, Each each) const {
       const sim::Time now = scheduler_->now();
+      if (arbiter_->host_word_ - std::uint32_t{first} < count) arbiter_->internal_meets_host(now);
       sim::Time* used = used_ + first;
       const auto word = [&](std::size_t i) {
         used[i] = now;
@@ -71,16 +78,22 @@ class BusyArbiter {
 
    private:
     friend class BusyArbiter;
-    Marks(sim::Time* used, const sim::Scheduler* scheduler) : used_(used), scheduler_(scheduler) {}
+    Marks(BusyArbiter* arbiter, sim::Time* used, const sim::Scheduler* scheduler)
+        : arbiter_(arbiter), used_(used), scheduler_(scheduler) {}
 
+    BusyArbiter* arbiter_;
     sim::Time* used_;
     const sim::Scheduler* scheduler_;
   };
-  Marks marks() { return Marks(last_used_.data(), &scheduler_); }
+  Marks marks() { return Marks(this, last_used_.data(), &scheduler_); }
 
   // The telegram processor uses `word` (< ram_words) now, in the current MCLK period.
   // Inline: a list walk makes hundreds of these per cycle.
-  void internal_access(std::uint16_t word) { last_used_.at(word) = scheduler_.now(); }
+  void internal_access(std::uint16_t word) {
+    const sim::Time now = scheduler_.now();
+    last_used_.at(word) = now;
+    if (word == host_word_) internal_meets_host(now);
+  }
   // The same for the `count` words from `first` (all < ram_words).
   void internal_access_run(std::uint16_t first, std::size_t count) {
     if (first + count > last_used_.size()) beyond_the_ram();
@@ -95,6 +108,10 @@ class BusyArbiter {
 
  private:
   Edge period_index(sim::Time t) const { return mclk_.last_at_or_before(t); }
+  // BUSYN low from now to the end of the present MCLK period.
+  void pull_low(sim::Time now);
+  // An internal access to the word of the µP's last access: a collision if that was now.
+  void internal_meets_host(sim::Time now);
   void release();
   [[noreturn]] static void beyond_the_ram();
 
@@ -105,6 +122,10 @@ class BusyArbiter {
   // its MCLK period: the period is worked out only for the rare µP access that asks
   // (same period iff same period index), so an internal access is one store.
   std::vector<sim::Time> last_used_;
+  // The µP's last RAM access: its word (kNoWord: none) and instant.
+  static constexpr std::uint32_t kNoWord = 0xFFFF'FFFFu;
+  std::uint32_t host_word_ = kNoWord;
+  sim::Time host_time_ = -1;
   bool busy_ = false;
   sim::Scheduler::EventId release_event_{};
 };
