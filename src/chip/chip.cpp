@@ -131,7 +131,7 @@ Chip::Chip(sim::Scheduler& scheduler, const ChipConfig& config)
 Chip::~Chip() = default;
 
 void Chip::watch_pins() {
-  pin(Pin::RSTN).watch([this](Level) {
+  pin(Pin::RSTN).react([this](Level) {
     const bool low = !input_high(Pin::RSTN);
     if (low == rstn_low_) return;
     const bool was_in_reset = in_reset();
@@ -139,7 +139,7 @@ void Chip::watch_pins() {
     if (low && !was_in_reset) enter_reset(ResetCause::Pin);
     if (!low && !in_reset()) leave_reset();
   });
-  pin(Pin::OUTZ).watch([this](Level) {
+  pin(Pin::OUTZ).react([this](Level) {
     const bool high = input_high(Pin::OUTZ);
     if (high == outz_) return;
     const bool was_in_reset = in_reset();
@@ -150,12 +150,12 @@ void Chip::watch_pins() {
   });
   // Delta spec 2.3.3: TM0/TM1 set REPON only while the chip is in reset.
   for (Pin p : {Pin::TM0, Pin::TM1}) {
-    pin(p).watch([this](Level) {
+    pin(p).react([this](Level) {
       if (in_reset()) apply_pin_reset_bits();
     });
   }
   for (Pin p : {Pin::SBAUD, Pin::SBAUD16}) {
-    pin(p).watch([this](Level) { refresh_pin_status_bits(); });
+    pin(p).react([this](Level) { refresh_pin_status_bits(); });
   }
 }
 

@@ -47,7 +47,7 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
       next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
       mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
-  cyc_clk_.watch([this](sim::Level level) { on_cyc_clk(level); });
+  cyc_clk_.react([this](sim::Level level) { on_cyc_clk(level); });
   time_base_.on_cycle_start(this, [](void* control, const CycleStart& start) {
     static_cast<CycleControl*>(control)->on_cycle_start(start);
   });

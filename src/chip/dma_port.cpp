@@ -15,7 +15,7 @@ DmaPort::DmaPort(Chip& chip)
       tx_count_(field_ref("TXCNT", chip.variant())),
       request_edge_(chip.scheduler(), chip.mclk(), [this] { drive_requests(); }) {
   for (Pin p : {Pin::RDN, Pin::WRN, Pin::BUSMODE0, Pin::BUSMODE1}) {
-    chip_.pin(p).watch([this](sim::Level) { on_strobe_pin(); });
+    chip_.pin(p).react([this](sim::Level) { on_strobe_pin(); });
   }
   regs_.on_write(rx_enable_.address,
                  [this](std::uint16_t, std::uint16_t before) { on_control_write(before); });

@@ -11,7 +11,7 @@ NandTree::NandTree(Chip& chip) : chip_(chip) {
   stages_.assign(inputs_.size(), false);
   for (std::size_t k = 0; k < inputs_.size(); ++k) {
     stages_[k] = stage(k);
-    chip_.pin(inputs_[k]).watch([this, k](sim::Level) { update_from(k); });
+    chip_.pin(inputs_[k]).react([this, k](sim::Level) { update_from(k); });
   }
 }
 

@@ -6,13 +6,13 @@ namespace sercon::chip {
 
 PinBus::PinBus(Chip& chip) : chip_(chip) {
   for (Pin p : {Pin::RDN, Pin::WRN, Pin::BUSMODE0, Pin::BUSMODE1}) {
-    chip_.pin(p).watch([this](sim::Level) { on_strobe_pin(); });
+    chip_.pin(p).react([this](sim::Level) { on_strobe_pin(); });
   }
   for (Pin p : {Pin::ALEL, Pin::ALEH, Pin::ADMUX}) {
-    chip_.pin(p).watch([this](sim::Level) { on_latch_pin(); });
+    chip_.pin(p).react([this](sim::Level) { on_latch_pin(); });
   }
   for (unsigned bit = 0; bit < 16; ++bit) {
-    chip_.pin(data_pin(bit)).watch([this](sim::Level) { on_latch_pin(); });
+    chip_.pin(data_pin(bit)).react([this](sim::Level) { on_latch_pin(); });
   }
 }
 

@@ -23,7 +23,7 @@ SerialUnit::SerialUnit(Chip& chip)
   chip.regs().on_change([this](std::uint8_t address) { on_register_change(address); });
   // TM0/TM1 choose the test generator unless TMODE2 overrides them (delta spec 2.3.3).
   for (const Pin p : {Pin::TM0, Pin::TM1}) {
-    chip.pin(p).watch([this](sim::Level) {
+    chip.pin(p).react([this](sim::Level) {
       if (running_) outputs_->refresh();
     });
   }

@@ -27,15 +27,19 @@ Signal::~Signal() {
 void Signal::set(Level level) {
   if (level == level_) return;
   level_ = level;
-  if (watching_ == 0) return;
-  if (telling) {
-    pending.push_back(Pending{this, level});
-    any_pending = true;
-    return;
-  }
-  // Outermost change: tell it, then every change made meanwhile, in order.
-  batch([this, level] { tell(level); });
+  if (watching_ == 0 && reactions_.empty()) return;
+  // This change is heard before the changes its reactions make; all of them when the
+  // outermost step is done.
+  batch([this, level] {
+    if (watching_ != 0) {
+      pending.push_back(Pending{this, level});
+      any_pending = true;
+    }
+    for (std::size_t i = 0; i < reactions_.size(); ++i) reactions_[i](level);
+  });
 }
+
+void Signal::react(Watcher reaction) { reactions_.push_back(std::move(reaction)); }
 
 bool Signal::open_batch() {
   if (telling) return false;

@@ -149,5 +149,32 @@ TEST(DmaPort, ControlWritesActAtOnceAndTheRequestsFollowAtTheNextMclkEdge) {
   EXPECT_EQ(b.pin(Pin::DMAREQT).level(), Level::Low);
 }
 
+// Datasheet 3.5.6 t_AHD: DMAACKNT may go inactive at the very instant WRN rises (hold
+// 0 ns). A DMA controller modelled as one scheduler event that ends the strobe and drops
+// the acknowledge together still writes its word into the transmit FIFO, as the same pin
+// changes made outside an event do: the chip reacts to each pin change at once
+// (sim/signal.hpp: a model's reactions run depth first; only watchers wait for the step).
+TEST(DmaPort, WriteEndTakesTheAcknowledgeAsItWasAtTheStrobeEnd) {
+  DmaPins b;
+  b.chip.reg_write(0x0C, kDmaTxEn);
+  for (unsigned bit = 0; bit < 16; ++bit) {
+    b.chip.drive(data_pin(bit), sim::level_of(((0x1234u >> bit) & 1u) != 0));
+  }
+  b.chip.drive(Pin::DMAACKTN, Level::Low);
+  b.chip.drive(Pin::WRN, Level::Low);
+  const Time end = b.now() + kStrobe;
+  b.bench.scheduler.at(end, [&b] {
+    b.chip.drive(Pin::WRN, Level::High);
+    b.chip.drive(Pin::DMAACKTN, Level::High);
+    for (unsigned bit = 0; bit < 16; ++bit) b.chip.drive(data_pin(bit), Level::HighZ);
+  });
+  b.run_for(2 * kStrobe);
+  auto& port = *b.chip.unit<DmaPort>();
+  ASSERT_EQ(port.transmit_count(), 1u);
+  std::uint16_t word = 0;
+  port.transmit(std::span<std::uint16_t>(&word, 1));
+  EXPECT_EQ(word, 0x1234);  // D15-0 as they were when WRN rose, not floating
+}
+
 }  // namespace
 }  // namespace sercon::chip

@@ -133,6 +133,99 @@ TEST_F(PinBusTest, MultiplexedAddressLatch) {
   EXPECT_FALSE(chip().drives(Pin::A2));
 }
 
+// Datasheet 3.5.3: the latch stores D15-0 at the falling edge of ALEL / ALEH (hold
+// T_ALEHD). A multiplexed µP modelled as one event that puts the address on D15-0, closes
+// the latch and goes on to the data phase latches the address, as the same changes made
+// one by one do: the latch follows the lines as they were at each change.
+TEST_F(PinBusTest, LatchInOneStepTakesTheAddressPhase) {
+  set(Pin::ADMUX, true);
+  set(Pin::BHEN, false);
+  bench.scheduler.at(50'000, [this] {
+    data(0x0014);  // address phase: register 0x0A
+    set(Pin::ALEL, false);
+    set(Pin::ALEH, false);
+    data(0x0004);  // data phase
+  });
+  bench.scheduler.run_until(60'000);
+  EXPECT_EQ(chip().unit<PinBus>()->latched_address(), 0x0014);
+  select_registers(true);
+  set(Pin::WRN, false);
+  set(Pin::WRN, true);
+  EXPECT_EQ(chip().reg_read(0x0A), 0x0004);
+}
+
+// docs/chip.md "Pins": the board may not drive a data line the chip drives "at that
+// moment (a read in progress)"; the chip floats D15-0 at once when RDN rises (decision,
+// "The bus through the pins"). A board that ends a read and puts the next write's data on
+// D15-0 in one step (a scheduler event, a pin callback) drives the lines as it does when
+// it makes the same changes one by one: the read is no longer in progress.
+TEST_F(PinBusTest, EndingAReadAndDrivingDataInOneStep) {
+  set(Pin::BHEN, false);
+  address(0x0014);  // register 0x0A
+  select_registers(true);
+  set(Pin::RDN, false);
+  ASSERT_TRUE(any_data_driven());
+  bool refused = false;
+  bench.scheduler.at(50'000, [this, &refused] {
+    set(Pin::RDN, true);
+    try {
+      data(0x0003);
+    } catch (const std::invalid_argument&) {
+      refused = true;
+    }
+    set(Pin::WRN, false);
+  });
+  bench.scheduler.run_until(60'000);
+  EXPECT_FALSE(refused);
+  EXPECT_EQ(data_lines(), 0x0003);
+  set(Pin::WRN, true);
+  EXPECT_EQ(chip().reg_read(0x0A), 0x0003);
+}
+
+// The same for A15-0: ADMUX = 0 makes them inputs again ("The bus through the pins").
+TEST_F(PinBusTest, LeavingAdmuxAndDrivingTheAddressInOneStep) {
+  set(Pin::ADMUX, true);
+  data(0x0014);
+  set(Pin::ALEL, false);
+  ASSERT_TRUE(chip().drives(Pin::A2));
+  bool refused = false;
+  bench.scheduler.at(50'000, [this, &refused] {
+    set(Pin::ADMUX, false);
+    try {
+      address(0x0000);
+    } catch (const std::invalid_argument&) {
+      refused = true;
+    }
+  });
+  bench.scheduler.run_until(60'000);
+  EXPECT_FALSE(refused);
+  EXPECT_FALSE(chip().drives(Pin::A2));
+  EXPECT_EQ(chip().pin(Pin::A2).level(), Level::Low);
+}
+
+// Table 1 OUTZ: "OUTZ is 1 puts all pins into a high impedance state". A board that raises
+// OUTZ during a read and drives D15-0 in the same step drives them, as it may when it
+// makes the two changes one by one.
+TEST_F(PinBusTest, RaisingOutzAndDrivingDataInOneStep) {
+  set(Pin::BHEN, false);
+  address(0x0000);
+  select_registers(true);
+  set(Pin::RDN, false);
+  ASSERT_TRUE(any_data_driven());
+  bool refused = false;
+  bench.scheduler.at(50'000, [this, &refused] {
+    set(Pin::OUTZ, true);
+    try {
+      data(0x1234);
+    } catch (const std::invalid_argument&) {
+      refused = true;
+    }
+  });
+  bench.scheduler.run_until(60'000);
+  EXPECT_FALSE(refused);
+  EXPECT_EQ(data_lines(), 0x1234);
+}
+
 // Selecting RAM and registers at once is a board fault: the strobe makes no access.
 TEST_F(PinBusTest, DoubleSelectIsRefused) {
   set(Pin::BHEN, false);
@@ -168,6 +261,43 @@ TEST_F(PinBusTest, ByteReadDrivesOneLane) {
   EXPECT_FALSE(chip().drives(Pin::D8));
   EXPECT_EQ(data_lines(), 0xFF34);
   set(Pin::RDN, true);
+}
+
+// Datasheet 3.5.7 (and 3.5.6) t_AHD: the hold time of A11-0, BHEN and MCSN0-1 after the
+// rising edge of WRN is 0 ns, so a board may end the write and move on to the next cycle's
+// address and selects at the same instant. A board model does that in one scheduler event
+// (or one pin callback); the chip reacts to each pin change at once (sim/signal.hpp), so
+// the write still goes where the pins pointed when WRN rose.
+TEST_F(PinBusTest, WriteEndTakesTheAddressAsItWasAtTheStrobeEnd) {
+  set(Pin::BHEN, false);
+  address(0x0020);  // RAM word 0x10
+  select_ram(true);
+  set(Pin::WRN, false);
+  data(0xBEEF);
+  bench.scheduler.at(50'000, [this] {
+    set(Pin::WRN, true);  // end of the write
+    address(0x0040);      // next cycle's address, RAM word 0x20 (hold 0 ns)
+    set(Pin::BHEN, true);
+  });
+  bench.scheduler.run_until(60'000);
+  EXPECT_EQ(chip().ram().read(0x10), 0xBEEF);
+  EXPECT_EQ(chip().ram().read(0x20), 0);
+}
+
+TEST_F(PinBusTest, WriteEndTakesTheChipSelectsAsTheyWereAtTheStrobeEnd) {
+  set(Pin::BHEN, false);
+  address(0x0014);  // register 0x0A (PHAS0) or RAM word 0x0A
+  select_registers(true);
+  set(Pin::WRN, false);
+  data(0x0003);
+  bench.scheduler.at(50'000, [this] {
+    set(Pin::WRN, true);      // end of the register write
+    select_registers(false);  // deselected at the same instant (t_AHD PCSN0, PCS1: 0 ns)
+    select_ram(true);
+  });
+  bench.scheduler.run_until(60'000);
+  EXPECT_EQ(chip().reg_read(0x0A), 0x0003);
+  EXPECT_EQ(chip().ram().read(0x0A), 0);
 }
 
 // BUSYN for strobes over a RAM word the telegram processor uses in the same MCLK period

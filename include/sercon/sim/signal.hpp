@@ -1,12 +1,14 @@
 // A named wire between models (a chip pin, a fibre's light level). Watchers hear every
 // change of level; reading the time of a change is the scheduler's job.
 //
-// Watchers hear changes one at a time, in the order they happened: a change made while
-// watchers are being told of another (a watcher that drives a pin, a chip's reaction that
-// sets its outputs) or inside a batch (a scheduler event, a chip's bus access) takes effect
-// at once, but its watchers are told after those of the change being told, or when the
-// batch ends. So a model finishes its reaction before anyone hears what it did, and a
-// callback that drives another pin never runs inside a half-done one.
+// Two kinds of listeners. A model's reactions (react(): a chip taking its input pins) run
+// at once at every change, depth first, as the hardware would. Watchers (watch(): tests,
+// boards, the C API's pin callbacks) hear changes one at a time, in the order they happened,
+// when the step that made them is done: a change made inside a reaction, a watcher or a
+// batch (a scheduler event, a chip's bus access) takes effect at once, but its watchers are
+// told after the watchers of the change being told, or when the batch ends. So a model
+// finishes its reaction before anyone hears what it did, and a callback that drives another
+// pin never runs inside a half-done one.
 //
 // A signal may have a provider: a function its model uses to compute the level when it is
 // read, so that a pin nobody watches costs no event per change (RECACTN, IDLE: one change
@@ -58,6 +60,10 @@ class Signal {
   // Returns a handle for unwatch(). The on_watch hook runs first (the new watcher does not
   // hear the model bringing the level up to date).
   std::size_t watch(Watcher watcher);
+  // A model's own reaction to this signal (a chip taking its input pins): run at once at
+  // every change, before any watcher hears it, and the changes it makes are heard after it
+  // is done. Not counted by watched(); kept for the signal's life.
+  void react(Watcher reaction);
   void unwatch(std::size_t handle);
   // Inline and without touching the watchers: asked at every telegram that passes a chip.
   bool watched() const { return watching_ != 0; }
@@ -74,7 +80,8 @@ class Signal {
   std::string name_;
   Level level_;
   std::vector<Watcher> watchers_;  // unwatched slots hold an empty function
-  std::size_t watching_ = 0;       // non-empty slots
+  std::vector<Watcher> reactions_;
+  std::size_t watching_ = 0;  // non-empty slots
   Provider provider_ = nullptr;
   const void* provider_context_ = nullptr;
   std::function<void()> on_watch_;
