@@ -20,8 +20,10 @@ void PinBus::reset(ResetCause) {
   // Every reset sets D15-0 HighZ (docs/chip.md "Resets"). A read samples its word when
   // its strobe starts, so a strobe still held drives nothing until a new one begins.
   release_data_lines();
-  // The reset released BUSYN: a write in progress reports no collision.
+  // The reset released BUSYN: a write in progress reports no collision; and it aborted that
+  // write: its end writes nothing (docs/chip.md "Resets", as DmaPort's write).
   write_busy_ = false;
+  write_cut_ = active_.write;
 }
 
 BusStrobes PinBus::strobes() const {
@@ -79,7 +81,10 @@ void PinBus::write_starts() {
 void PinBus::on_strobe_pin() {
   const BusStrobes now = strobes();
   if (active_.read && !now.read) release_data_lines();
-  if (active_.write && !now.write) run(sample(true));  // data is taken at the end
+  if (active_.write && !now.write) {
+    if (!write_cut_) run(sample(true));  // data is taken at the end
+    write_cut_ = false;
+  }
   const bool read_starts = !active_.read && now.read;
   const bool write_starts_now = !active_.write && now.write;
   active_ = now;

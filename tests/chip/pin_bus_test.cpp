@@ -434,5 +434,28 @@ TEST_F(PinBusReset, RstnDuringAReadDoesNotKeepDrivingThePreResetValue) {
   chip().drive(Pin::RSTN, Level::High);
 }
 
+// docs/chip.md "Resets", decision: a write strobe the reset cut short writes nothing when
+// it ends, as a read the reset cut short drives nothing and a DMA write the reset cut
+// short moves no word (DmaPort): the reset aborted the access. RAM keeps its contents
+// through the reset, so a RAM write shows it; a strobe that begins after the reset writes.
+TEST_F(PinBusTest, AWriteStrobeHeldThroughAResetWritesNothingAtItsEnd) {
+  chip().ram_write(0x0100, 0x1111);
+  set(Pin::BHEN, false);
+  address(0x0100 * 2);
+  select_ram(true);
+  set(Pin::WRN, false);
+  data(0x2222);
+  chip().drive(Pin::RSTN, Level::Low);
+  chip().drive(Pin::RSTN, Level::High);
+  set(Pin::WRN, true);
+  float_data();
+  EXPECT_EQ(chip().ram_read(0x0100), 0x1111);
+  set(Pin::WRN, false);  // the next write goes in
+  data(0x3333);
+  set(Pin::WRN, true);
+  float_data();
+  EXPECT_EQ(chip().ram_read(0x0100), 0x3333);
+}
+
 }  // namespace
 }  // namespace sercon::chip

@@ -43,6 +43,7 @@ class PinBus : public ChipUnit {
   std::uint16_t driven_ = 0;  // data lines this unit drives for a read in progress
   std::uint64_t refused_ = 0;
   bool write_busy_ = false;  // the write in progress collided at its start
+  bool write_cut_ = false;   // the write strobe now held began before a reset: writes nothing
   BusResult last_;
 };
 
