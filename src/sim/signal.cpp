@@ -52,13 +52,9 @@ void Signal::close_batch() {
     telling = false;
     return;
   }
-  // A watcher that throws leaves nothing queued for the next change to tell.
+  // Closed however it ends: a watcher that throws leaves nothing queued for the next change.
   struct Done {
-    ~Done() {
-      telling = false;
-      any_pending = false;
-      pending.clear();
-    }
+    ~Done() { abandon_batch(); }
   } done;
   for (std::size_t i = 0; i < pending.size(); ++i) {
     const Pending p = pending[i];

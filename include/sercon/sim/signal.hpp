@@ -49,13 +49,13 @@ class Signal {
   // Changes the level and tells every watcher (after those of a change being told, see
   // above); setting the same level again is silent.
   void set(Level level);
+  void set(bool high) { set(level_of(high)); }
   // Runs `f`; the changes it makes (on any signal) are told when it returns, in order, as
   // if they were made inside a change being told. For a model's whole reaction to
   // something that is no pin (a scheduler event, a register access): nobody hears its
   // outputs half-way through it. Nested inside a change or another batch, it is part of it.
   template <typename F>
   static decltype(auto) batch(F&& f);
-  void set(bool high) { set(level_of(high)); }
 
   // Returns a handle for unwatch(). The on_watch hook runs first (the new watcher does not
   // hear the model bringing the level up to date).
