@@ -35,25 +35,9 @@ using testing::config_at_mbit;
 
 constexpr Time kBit = 62'500;  // 16 Mbit/s
 
+using testing::AllRepeatRing;
 using testing::RepeatingChip;
 using testing::set_bits;
-
-// Master + 2 slaves on 1 km fibres, every repeater on, the master's too.
-struct AllRepeatRing {
-  explicit AllRepeatRing(bool lazy)
-      : ring(s, config_at_mbit(16), config_at_mbit(16), 2, options()) {
-    ring.switch_on_lines();
-    for (std::size_t i = 0; i < 3; ++i) ring.serial(i).set_lazy_hops(lazy);
-    set_bits(ring.master(), ring.serial(0).fields().repon, true);
-  }
-  static RingOptions options() {
-    RingOptions o;
-    o.fibre_lengths_m = {1000.0, 1000.0, 1000.0};
-    return o;
-  }
-  sim::Scheduler s;
-  Ring ring;
-};
 
 std::string event_text(const testing::Recorder::Event& e) {
   std::string s = std::to_string(e.now) + (e.burst ? " burst " : " condition ") +
@@ -305,7 +289,7 @@ TEST(LazyHops, APlanWantingNoneOfTheirReportsLeavesTheBurstsLazy) {
 // lazy hops and the depth guard's deferred forwards (docs "Depth guard"); the line at the
 // master's RxD is the same either way.
 std::vector<std::string> every_node_repeats(bool lazy) {
-  AllRepeatRing all(lazy);
+  AllRepeatRing all(2, lazy);
   sim::Scheduler& s = all.s;
   Ring& ring = all.ring;
   chip::testing::LineTee<testing::Recorder> tap(ring.serial(0).rxd(), s);
@@ -329,7 +313,7 @@ TEST(LazyHops, ARingWhereEveryNodeRepeatsIsTheSame) {
 // insertion and grows without end in the model (not on the fibre). That is an error naming
 // the cause, not a hang (docs/serial-and-ring.md, "Depth guard"; review).
 TEST(LazyHops, AnOwnTelegramInARingWhereEveryNodeRepeatsIsAnErrorNotAHang) {
-  AllRepeatRing all(true);
+  AllRepeatRing all(2);
   sim::Scheduler& s = all.s;
   Ring& ring = all.ring;
   s.run_until(1000 * kBit);

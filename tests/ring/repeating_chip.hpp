@@ -1,6 +1,7 @@
 // One chip whose repeater passes RxD on to TxD1, for the lazy-hop tests at one node
 // (docs/serial-and-ring.md, "Lazy hops"): lazy hops on or off, so a test can run the same
-// scenario both ways and compare.
+// scenario both ways and compare. And a ring where every node repeats, the master too
+// ("Depth guard").
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
 #include "sercon/ring/fibre.hpp"
+#include "sercon/ring/ring.hpp"
 
 namespace sercon::ring::testing {
 
@@ -49,6 +51,24 @@ struct RepeatingChip {
   sim::Scheduler s;
   chip::Chip c;
   chip::SerialUnit& u;
+};
+
+// Master + `slaves` at 16 Mbit/s on 1 km fibres (a lap longer than short telegrams), lines
+// on (Ring::switch_on_lines), then every repeater on, the master's too.
+struct AllRepeatRing {
+  explicit AllRepeatRing(std::size_t slaves, bool lazy = true)
+      : ring(s, config_at_mbit(16), config_at_mbit(16), slaves, options(slaves)) {
+    ring.switch_on_lines();
+    for (std::size_t i = 0; i <= slaves; ++i) ring.serial(i).set_lazy_hops(lazy);
+    set_bits(ring.master(), ring.serial(0).fields().repon, true);
+  }
+  static RingOptions options(std::size_t slaves) {
+    RingOptions o;
+    o.fibre_lengths_m.assign(slaves + 1, 1000.0);
+    return o;
+  }
+  sim::Scheduler s;
+  Ring ring;
 };
 
 }  // namespace sercon::ring::testing

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "repeating_chip.hpp"
 #include "ring_bench.hpp"
 #include "sercon/chip/register_map.hpp"
 #include "sercon/chip/serial_unit_receiver.hpp"
@@ -135,15 +136,11 @@ TEST(Ring, ASlaveInsertsItsTelegramInItsSlot) {
 // comes back round to the same TxD while it is being passed on (found by review: a
 // use-after-free under ASan when the line's timeline grew during the telling).
 TEST(Ring, TxdSwitchedBackOnPassesOnWhatIsAnnouncedWhenEveryNodeRepeats) {
-  sim::Scheduler s;
-  RingOptions o;
-  o.fibre_lengths_m = {1000.0, 1000.0};  // a lap (10 µs) longer than the telegrams
-  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 1, o);
-  ring.switch_on_lines();
+  testing::AllRepeatRing all(1);  // a lap (10 µs) longer than the telegrams
+  sim::Scheduler& s = all.s;
+  Ring& ring = all.ring;
   chip::Chip& m = ring.master();
-  const std::uint16_t repon = chip::find_field("REPON", m.variant())->mask();
   const std::uint16_t txoe = chip::find_field("TXOE", m.variant())->mask();
-  m.reg_write(0x01, static_cast<std::uint16_t>(m.reg_read(0x01) | repon));
   const std::uint16_t ctrl = m.reg_read(0x02);
   m.reg_write(0x02, static_cast<std::uint16_t>(ctrl & ~txoe));  // the ring open at the master
   auto heard = ears(ring);
@@ -174,14 +171,10 @@ TEST(Ring, TxdSwitchedBackOnPassesOnWhatIsAnnouncedWhenEveryNodeRepeats) {
 // past: the next fibre threw std::invalid_argument out of Scheduler::run_until, 3 ms after
 // the ring had been opened (found by fuzz/ring_fuzz).
 TEST(Ring, OpeningARingWhereEveryNodeRepeatsLeavesNoDeferredForwardBehind) {
-  sim::Scheduler s;
-  RingOptions o;
-  o.fibre_lengths_m = {1000.0, 1000.0};  // a lap (10 µs) longer than the telegram
-  Ring ring(s, config_at_mbit(16), config_at_mbit(16), 1, o);
-  ring.switch_on_lines();
-  chip::Chip& m = ring.master();
-  const std::uint16_t repon = chip::find_field("REPON", m.variant())->mask();
-  m.reg_write(0x01, static_cast<std::uint16_t>(m.reg_read(0x01) | repon));
+  testing::AllRepeatRing all(1);  // a lap (10 µs) longer than the telegram
+  sim::Scheduler& s = all.s;
+  Ring& ring = all.ring;
+  const std::uint16_t repon = chip::find_field("REPON", ring.master().variant())->mask();
   const Time t = bit_period_of(16);
   s.run_until(1000 * t);
   const chip::LineBurst lap{s.now() + t, t, testing::telegram_bits(0x07, {0x55, 0x55})};
