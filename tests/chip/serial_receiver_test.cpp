@@ -48,6 +48,15 @@ struct Events {
       got.push_back({b.scheduler.now(), t.start, t.end, t.detected, t.frame});
     });
   }
+  // One telegram whose address came in, then cut at `cut`: an Abort ending there
+  // (serial_unit.hpp, end "or where the error cut it").
+  void expect_one_cut_at(Time cut) const {
+    ASSERT_EQ(started.size(), 1u);  // the address had come in before the cut
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_FALSE(got[0].frame.ok());
+    EXPECT_EQ(got[0].frame.error, wire::FrameError::Abort);
+    EXPECT_EQ(got[0].end, cut);
+  }
   std::vector<Started> started;
   std::vector<Got> got;
 };
@@ -149,12 +158,9 @@ TEST(serial_Receiver, ACutTelegramIsReportedAsAnErrorEndingAtTheCut) {
   b.unit.rxd().line_condition(40 * t + 3, LineCondition::Dark, 0);
   EXPECT_EQ(b.chip->pin(Pin::RECACTN).level(), Level::High);
   b.run_to(200 * t);
+  ev.expect_one_cut_at(40 * t + 3);
   ASSERT_EQ(ev.got.size(), 1u);
-  EXPECT_FALSE(ev.got[0].frame.ok());
-  EXPECT_EQ(ev.got[0].frame.error, wire::FrameError::Abort);
-  EXPECT_EQ(ev.got[0].end, 40 * t + 3);
   EXPECT_EQ(ev.got[0].detected, b.detection(40 * t + 3));
-  ASSERT_EQ(ev.started.size(), 1u);  // the address had come in before the cut
 }
 
 // A new telegram that cuts the one before (the repeater inserting its own): the first is
@@ -225,11 +231,7 @@ TEST(serial_Receiver, ARateChangeCutsTheTelegramComingIn) {
   b.chip->drive(Pin::SBAUD, Level::High);  // 8 Mbit/s (delta spec 2.3.1 table, row 5)
   ASSERT_EQ(b.period(), bit_period_of(8));
   b.run_to(sim::kMillisecond);
-  ASSERT_EQ(ev.started.size(), 1u);  // the address had come in before the change
-  ASSERT_EQ(ev.got.size(), 1u);
-  EXPECT_FALSE(ev.got[0].frame.ok());
-  EXPECT_EQ(ev.got[0].frame.error, wire::FrameError::Abort);
-  EXPECT_EQ(ev.got[0].end, change);
+  ev.expect_one_cut_at(change);
   const std::vector<std::pair<Time, Level>> expected = {{0, Level::Low}, {change, Level::High}};
   EXPECT_EQ(recactn.edges, expected);
 }
