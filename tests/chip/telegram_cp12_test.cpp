@@ -277,6 +277,24 @@ TEST_P(Cp12, UnservedHeaderRaisesNoEndMarker) {
   EXPECT_EQ(intstat & kIntEndmk, 0) << "INT_ENDMK";
 }
 
+// Delta spec 2.10.2.2: INT_RSCEND "becomes active, at the end of a receive telegram, if
+// there are no service container that need to be worked on or in case the work is
+// completed"; 2.11.2 puts it, CLR_RSCEND and EN0/EN1_INT_RSCEND into 28H, one of the
+// "SERCON816 NEW Control Registers". The drive's MDT container uses service container 0
+// (SVFL): on the 816 INT_RSCEND follows the MDT and drives INT0; the 410B has no 28H, so
+// it reads 0 there and INT0 stays inactive, while INT_REND comes on both.
+TEST_P(Cp12, ServiceContainerEndIsRaisedOnlyOnThe816) {
+  start(0x5001);
+  ring.chip(1).ram_write(0x10C, 0x8402);  // LASTDC, SVFL, NSV 0, LEN 2
+  ring.chip(1).reg_write(kWdCtrl, kEn0IntRscend);
+  run_cycles(2);
+  Chip& s = ring.chip(1);
+  EXPECT_EQ(s.reg_read(kIntStat) & kIntRend, kIntRend);
+  const bool is816 = GetParam() == Variant::Sercon816;
+  EXPECT_EQ(s.reg_read(kWdCtrl), is816 ? kEn0IntRscend | kIntRscend : 0);
+  EXPECT_EQ(s.pin(Pin::INT0).level(), is816 ? sim::Level::High : sim::Level::Low);
+}
+
 INSTANTIATE_TEST_SUITE_P(Variants, Cp12, ::testing::Values(Variant::Sercon816, Variant::Sercon410B),
                          [](const ::testing::TestParamInfo<Variant>& p) {
                            return p.param == Variant::Sercon816 ? "Sercon816" : "Sercon410B";
