@@ -193,7 +193,8 @@ constexpr BitField kDivClkControl[] = {
 
 constexpr BitField kSlaveFlags[] = {
     {"FLMDTADR", 12, 1, R, 0, Both, DeltaSpec,
-     "Slave, CP1/CP2: an MDT with the own address arrived; the AT is due (delta spec 2.9)"},
+     "Slave, CP0..2: an MDT with the own address arrived; the AT is due (delta spec 2.9; CP0 a "
+     "decision)"},
 };
 
 constexpr BitField kWatchdogControl[] = {
