@@ -32,7 +32,7 @@ enum {
 };
 
 /* DPRAM (datasheet 4.2, facts §5): word 0 points at the list of phases 0..2 (COMPT0),
- * word 1 at that of phases 3..4 (COMPT1); the master counts missed MSTs in word 10. */
+ * word 1 at that of phases 3..7 (COMPT1); the master counts missed MSTs in word 10. */
 enum { COMPT0 = 0, COMPT1 = 1, NMSTERR = 10 };
 enum { LIST = 0x040, PHASE012_END = 0x7FC };
 /* Header word 0: a transmit header 0x5000 + address (send every cycle); a receive header
