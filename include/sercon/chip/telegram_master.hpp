@@ -1,5 +1,5 @@
-// The master's MST (docs/telegram-processing.md, "Master"): sent at every internal MST
-// start (CycleControl::on_send_mst) with PHAS0 as its data byte, whatever ENTMT says
+// The master's MST (docs/telegram-processing.md §3, "Master — counter reference"): sent at every
+// internal MST start (CycleControl::on_send_mst) with PHAS0 as its data byte, whatever ENTMT says
 // (delta spec 2.6.2); its return around the ring is measured and judged:
 //  - TCYCDEL (0x11) = the cycle counter at the returned MST's detection;
 //  - outside JTRDEL1..JTRDEL2, or not back (by the step out of JTRDEL2, at the latest by
