@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -74,7 +75,11 @@ class RingExchange : public ::testing::Test {
     o.fibre_lengths_m = kLengths;
     return o;
   }
-  Time delay(std::size_t fibre) { return ring.fibre(fibre).delay(); }
+  // Fibre i's delay from its length, not read back from the model: 5 ns per metre
+  // (docs/serial-and-ring.md, "Fibre": delay = round(length x 5000 ps/m)).
+  static Time delay(std::size_t fibre) {
+    return static_cast<Time>(std::llround(kLengths[fibre] * 5'000.0));
+  }
 
   void SetUp() override {
     t = timing_16mbit();
