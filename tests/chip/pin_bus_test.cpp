@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <span>
 #include <utility>
 #include <vector>
 
 #include "chip_fixture.hpp"
+#include "sercon/chip/dma_port.hpp"
 
 namespace sercon::chip {
 namespace {
@@ -239,7 +241,9 @@ TEST_F(PinBusTest, DoubleSelectIsRefused) {
 }
 
 // Table 1, DMAACKRN: "the receive FIFO is read, independent of the levels on A6-1 and
-// the chip select signals": such a strobe is no RAM or register access.
+// the chip select signals": such a strobe is no RAM or register access. With VERSION
+// (0x0010, datasheet 4.1) addressed and selected, the lines carry the FIFO's word; with
+// the FIFO empty they carry nothing (an underrun, docs/telegram-processing.md "DMA").
 TEST_F(PinBusTest, DmaAcknowledgeBypassesRamAndRegisters) {
   set(Pin::BHEN, false);
   address(0x0000);
@@ -248,6 +252,15 @@ TEST_F(PinBusTest, DmaAcknowledgeBypassesRamAndRegisters) {
   set(Pin::RDN, false);
   EXPECT_FALSE(any_data_driven());
   set(Pin::RDN, true);
+  chip().reg_write(0x0C, 0x0001);  // DMACTRL.DMARXEN (docs/registers.md)
+  const std::uint16_t word = 0x1234;
+  chip().unit<DmaPort>()->receive(std::span(&word, 1));
+  set(Pin::RDN, false);
+  EXPECT_TRUE(any_data_driven());
+  EXPECT_EQ(data_lines(), 0x1234);  // the FIFO word, not VERSION
+  set(Pin::RDN, true);
+  EXPECT_FALSE(any_data_driven());
+  EXPECT_EQ(chip().unit<DmaPort>()->receive_count(), 0u);  // the read took it
 }
 
 // A byte read on a 16-bit bus drives only its lane.
