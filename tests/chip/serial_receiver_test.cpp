@@ -163,8 +163,10 @@ TEST(serial_Receiver, ACutTelegramIsReportedAsAnErrorEndingAtTheCut) {
   EXPECT_EQ(ev.got[0].detected, b.detection(40 * t + 3));
 }
 
-// A new telegram that cuts the one before (the repeater inserting its own): the first is
-// an error, the second decodes whole; RECACTN stays low across the seam.
+// docs/serial-and-ring.md, "Receiver" ("Cuts"; RECACTN: "A telegram cut by the next one
+// keeps it low across the seam"): a new telegram that cuts the one before (the repeater
+// inserting its own): the first is an error, the second decodes whole; RECACTN stays low
+// across the seam.
 TEST(serial_Receiver, ABurstCutByTheNextOne) {
   SerialBench b;
   Events ev(b);
@@ -186,8 +188,9 @@ TEST(serial_Receiver, ABurstCutByTheNextOne) {
   EXPECT_EQ(recactn.edges, expected);
 }
 
-// A cut before the address byte is complete: no start event, and the flag-only fragment
-// is no frame at all.
+// docs/serial-and-ring.md, "Receiver" ("Cuts": "the flag-only fragment is no frame at
+// all"; the start event needs the address byte): a cut before the address byte is
+// complete gives no start event and no telegram event.
 TEST(serial_Receiver, ACutInTheOpeningFlagLeavesNothing) {
   SerialBench b;
   Events ev(b);
@@ -200,8 +203,9 @@ TEST(serial_Receiver, ACutInTheOpeningFlagLeavesNothing) {
   EXPECT_TRUE(ev.got.empty());
 }
 
-// Brief: "A burst at a bit period different from the receiver's rate is distorted:
-// nothing decoded" (RDIST: line_monitor_test).
+// Decision (docs/serial-and-ring.md, "Receiver", "Another bit rate"): "A burst whose bit
+// period is not the receiver's is distorted: nothing is decoded, no events, RECACTN stays
+// high" (RDIST: line_monitor_test).
 TEST(serial_Receiver, ABurstAtAnotherRateDecodesNothing) {
   SerialBench b;  // 16 Mbit/s
   Events ev(b);
@@ -430,8 +434,9 @@ TEST(serial_Receiver, RecactnWithAWatcherHasEveryEdgeAtItsTime) {
   EXPECT_EQ(seen_at, (std::vector<Time>{a + len, c, c + 2 * len}));
 }
 
-// Decisions (line_decode_memo.hpp): bits shared by every hop are decoded once; a changed
-// copy is decoded again; memoization does not change what is reported.
+// Decisions (docs/serial-and-ring.md, "Receiver", "Memoized decoding"; line_decode_memo.hpp):
+// bits shared by every hop are decoded once; a changed copy is decoded again; memoization
+// does not change what is reported.
 TEST(serial_Receiver, DecodingIsMemoizedPerSharedBitsObject) {
   sim::Scheduler scheduler;
   Chip a(scheduler, ChipConfig{});
@@ -463,8 +468,9 @@ TEST(serial_Receiver, DecodingIsMemoizedPerSharedBitsObject) {
   }
 }
 
-// Several frames in one burst (e.g. back-to-back telegrams a test builds as one): each is
-// reported with its own times.
+// docs/serial-and-ring.md, "Receiver" (the telegram event "comes for every frame the
+// decoder reports"): several frames in one burst (e.g. back-to-back telegrams a test builds
+// as one) are each reported with their own times.
 TEST(serial_Receiver, EveryFrameOfABurstIsReported) {
   SerialBench b;
   Events ev(b);
@@ -476,10 +482,23 @@ TEST(serial_Receiver, EveryFrameOfABurstIsReported) {
   b.unit.rxd().line_burst(LineBurst{0, t, bits});
   b.run_to(2000 * t);
   ASSERT_EQ(ev.got.size(), 2u);
-  EXPECT_EQ(ev.got[0].end, static_cast<Time>(f1.end_bit) * t);
-  EXPECT_EQ(ev.got[1].start, static_cast<Time>(f2.start_bit) * t);
+  const Time end1 = static_cast<Time>(f1.end_bit) * t;
+  const Time start2 = static_cast<Time>(f2.start_bit) * t;
+  const Time end2 = static_cast<Time>(f2.end_bit) * t;
+  EXPECT_TRUE(ev.got[0].frame.ok());
+  EXPECT_EQ(ev.got[0].frame.address, 0x11);
+  EXPECT_EQ(ev.got[0].start, static_cast<Time>(f1.start_bit) * t);
+  EXPECT_EQ(ev.got[0].end, end1);
+  EXPECT_EQ(ev.got[0].detected, b.detection(end1));
+  EXPECT_TRUE(ev.got[1].frame.ok());
   EXPECT_EQ(ev.got[1].frame.address, 0x12);
-  EXPECT_EQ(ev.started.size(), 2u);
+  EXPECT_EQ(ev.got[1].frame.data, kData);
+  EXPECT_EQ(ev.got[1].start, start2);
+  EXPECT_EQ(ev.got[1].end, end2);
+  EXPECT_EQ(ev.got[1].detected, b.detection(end2));
+  ASSERT_EQ(ev.started.size(), 2u);
+  EXPECT_EQ(ev.started[1].start, start2);
+  EXPECT_EQ(ev.started[1].address, 0x12);
 }
 
 }  // namespace
