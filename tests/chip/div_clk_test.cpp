@@ -238,8 +238,9 @@ TEST(DivClk, The410BIgnoresDivclkmode) {
   EXPECT_EQ(b.pin_log.changes, b.pulses(starts, Level::High));
 }
 
-// Decision: pulses 1 µs apart (DTDIVCLK = 1) join into one active stretch without a
-// zero-width gap; DTDIVCLK = 0 puts all pulses on one instant: one pulse.
+// Decision (docs/timing.md §6 "DIV_CLK", mode 0): pulses 1 µs apart (DTDIVCLK = 1) join
+// into one active stretch without a zero-width gap; DTDIVCLK = 0 puts all pulses on one
+// instant: one pulse.
 TEST(DivClk, AdjacentPulsesJoinAndCoincidentPulsesAreOne) {
   for (const int distance : {1, 0}) {
     DivClkBench b;
@@ -256,9 +257,11 @@ TEST(DivClk, AdjacentPulsesJoinAndCoincidentPulsesAreOne) {
   }
 }
 
-// Decision: a slave free-wheeling over missing MSTs keeps DIV_CLK going in the substitute
-// cycles (they keep the µs grid); cycle times up to TSCYC + JTSCYC2 of a missed cycle are
-// before the free-wheel decision and are lost in it.
+// Decision (docs/timing.md §4 "Free-wheel", §6 "DIV_CLK": planned at every cycle start,
+// substitute ones included): a slave free-wheeling over missing MSTs keeps DIV_CLK going in
+// the substitute cycles (they keep the µs grid); cycle times up to TSCYC + JTSCYC2 of a
+// missed cycle are before the free-wheel decision and are lost in it. The counter loads at
+// the third MCLK edge after the recognition (docs/timing.md §3, "Slave").
 TEST(DivClk, ContinuesWhileASlaveFreeWheels) {
   DivClkBench b;
   b.chip.reg_write(kJtscyc1, static_cast<std::uint16_t>(-4));

@@ -74,8 +74,8 @@ TEST(serial_LineMonitor, DarkOrSteadyLightForFibbrtimBitTimesIsABreak) {
   }
 }
 
-// Decision: a healthy idle line changes level every 8 bit times, so FIBBRTIM below 8
-// counts as 8.
+// Decision (docs/registers.md 0x0D FIBBRTIM; docs/serial-and-ring.md, "Line monitor"): a
+// healthy idle line changes level every 8 bit times, so FIBBRTIM below 8 counts as 8.
 TEST(serial_LineMonitor, FibbrtimBelowEightCountsAsEight) {
   SerialBench b;
   const Time t = b.period();
@@ -86,7 +86,9 @@ TEST(serial_LineMonitor, FibbrtimBelowEightCountsAsEight) {
   expect_rises_at(b, kFibbr, 108 * t);
 }
 
-// Writing a new FIBBRTIM while dark moves the deadline (counted from the last edge).
+// Decision (docs/serial-and-ring.md, "Line monitor": "A new FIBBRTIM applies to a darkness
+// already running"): writing a new FIBBRTIM while dark moves the deadline (counted from the
+// last edge).
 TEST(serial_LineMonitor, ANewFibbrtimAppliesToTheRunningDarkness) {
   SerialBench b;
   const Time t = b.period();
@@ -235,7 +237,7 @@ TEST(serial_LineMonitor, ARateChangeCountsTheRestOfATelegramsEdges) {
   expect_rises_at(b, kRdist, static_cast<Time>(second) * t);
 }
 
-// Decision: RDISTLIM = 0 counts as 1 (the first distorted edge).
+// Decision (docs/registers.md 0x0D RDISTLIM: "0 counts as 1"): the first distorted edge.
 TEST(serial_LineMonitor, RdistlimZeroCountsAsOne) {
   SerialBench b;
   b.chip->reg_write(kLineMon, 0xFF00);
@@ -244,7 +246,9 @@ TEST(serial_LineMonitor, RdistlimZeroCountsAsOne) {
   EXPECT_TRUE(bit(b, kSerCtrl, kRdist));
 }
 
-// L_ERRN = !((RDIST & LEDIST) | (FIBBR & LEMISS)): each cause only counts when enabled.
+// Datasheet Table 1 L_ERRN ("The operating mode is programmed by the processor") and
+// docs/registers.md 0x02 LEDIST / LEMISS: L_ERRN = !((RDIST & LEDIST) | (FIBBR & LEMISS)),
+// each cause only counts when enabled.
 TEST(serial_LineMonitor, LineErrorPinFollowsTheEnabledCauses) {
   SerialBench b;
   const Time t = b.period();
@@ -258,7 +262,9 @@ TEST(serial_LineMonitor, LineErrorPinFollowsTheEnabledCauses) {
   EXPECT_EQ(b.chip->pin(Pin::L_ERRN).level(), Level::High);
 }
 
-// A reset clears RDIST / FIBBR; the monitor starts again at release.
+// docs/serial-and-ring.md, "Line monitor" (FIBBR counted "from release if it was steady
+// then") and docs/chip.md "Resets" (every reset loads the reset values, FIBBR 0): a reset
+// clears RDIST / FIBBR; the monitor starts again at release.
 TEST(serial_LineMonitor, ResetStartsTheMonitorAgain) {
   SerialBench b;
   const Time t = b.period();
