@@ -71,6 +71,8 @@ TEST_F(PinBusTest, IntelReadDrivesDataWhileRdnIsLow) {
   EXPECT_EQ(chip().pin(Pin::D4).level(), Level::HighZ);
 }
 
+// Table 1 WRN; datasheet 3.5.6 "setup time D15-0 to end of write access" and docs/chip.md
+// "The bus through the pins": a write takes D15-0 when the strobe ends.
 TEST_F(PinBusTest, IntelWriteTakesDataAtTheEndOfWrn) {
   set(Pin::BHEN, false);
   address(0x0014);  // register 0x0A
@@ -228,7 +230,8 @@ TEST_F(PinBusTest, RaisingOutzAndDrivingDataInOneStep) {
   EXPECT_EQ(data_lines(), 0x1234);
 }
 
-// Selecting RAM and registers at once is a board fault: the strobe makes no access.
+// Decision (docs/chip.md, bus: "both at once would make two drivers fight on D15-0"):
+// selecting RAM and registers at once is a board fault: the strobe makes no access.
 TEST_F(PinBusTest, DoubleSelectIsRefused) {
   set(Pin::BHEN, false);
   address(0x0000);
@@ -263,7 +266,9 @@ TEST_F(PinBusTest, DmaAcknowledgeBypassesRamAndRegisters) {
   EXPECT_EQ(chip().unit<DmaPort>()->receive_count(), 0u);  // the read took it
 }
 
-// A byte read on a 16-bit bus drives only its lane.
+// Table 1 BHEN ("data is transferred via D15-8 when BHEN is 0") and docs/chip.md (a byte
+// lane not in use is not driven; the lines read 1 through the pull-ups, datasheet 3.3): a
+// byte read (BHEN = 1, A0 = 0) on a 16-bit bus drives only D7-0.
 TEST_F(PinBusTest, ByteReadDrivesOneLane) {
   chip().ram_write(0, 0x1234);
   set(Pin::BHEN, true);
