@@ -15,6 +15,7 @@
 #include "../chip/register_words.hpp"
 #include "sercon/ring/ring.hpp"
 #include "sercon/sercon.h"
+#include "sercon/wire/encoder.hpp"
 
 namespace sercon::ring {
 namespace {
@@ -24,6 +25,7 @@ using sim::Time;
 
 constexpr Time kBit = 62'500;   // 16 Mbit/s (SBAUD = SBAUD16 = 0, SCLK 64 MHz)
 constexpr Time kSclk = 15'625;  // 64 MHz
+constexpr Time kMclk = 31'250;  // 32 MHz (the default configuration)
 constexpr std::array<double, 3> kLengths = {10.0, 20.0, 30.0};
 constexpr Time kStart = 1'234'567;  // the master's REGMODE write, off every grid
 
@@ -93,7 +95,8 @@ struct CRing {
   PinLog master_idle;
 };
 
-Time ceil_to_sclk(Time t) { return (t + kSclk - 1) / kSclk * kSclk; }
+Time ceil_to(Time t, Time grid) { return (t + grid - 1) / grid * grid; }
+Time ceil_to_sclk(Time t) { return ceil_to(t, kSclk); }
 
 // Where the master's MST, sent at `sent`, comes back to its RxD: each fibre's delay (5 ns
 // per metre) and each slave's repeater (2 bit times, rounded up to the SCLK grid;
@@ -137,12 +140,28 @@ TEST(CapiFibre, ALoopOfFibresIsTheRingRingBuilds) {
       ASSERT_EQ(sercon_ram_read(c.chips[i], w), ring.node(i).ram_read(w)) << "node " << i;
     }
   }
-  // The master's own MST comes back after the fibres and repeaters: its RECACTN falls there.
+  // The master's own MST goes out at its first cycle start: the MCLK edge after the REGMODE
+  // write (docs/timing.md §3, "Master with the internal timer"), TCYCSTART = 0 µs later
+  // (reset value, docs/registers.md), on the bit grid. It comes back after the fibres and
+  // repeaters: the master's RECACTN falls there.
+  const Time cycle_start = ceil_to(kStart, kMclk);
+  const Time sent = ceil_to(cycle_start, kBit);
   ASSERT_FALSE(c.master_idle.empty());
   ASSERT_FALSE(c.recactn[0].empty());
-  EXPECT_EQ(c.master_idle.front().second, SERCON_LOW);  // IDLE low: the MST goes out
-  EXPECT_EQ(c.recactn[0].front(), std::make_pair(mst_back(c.master_idle.front().first), 0));
-  EXPECT_GT(c.read(0, kTcycdel), 1);  // measured: the counter at the return (facts §5)
+  EXPECT_EQ(c.master_idle.front(), std::make_pair(sent, int{SERCON_LOW}));  // IDLE low: MST out
+  EXPECT_EQ(c.recactn[0].front(), std::make_pair(mst_back(sent), 0));
+  // TCYCDEL (docs/telegram-processing.md §3, decision): the master's counter at the
+  // detection of its returning MST, end + 5.5 bit + 3 MCLK up to the next MCLK edge (facts
+  // §5 t_start). The counter is TCNTST = 1 from the cycle start and steps every µs from
+  // MCLKST = 18 MCLK periods after it (docs/timing.md §2).
+  wire::LineEncoder encoder(true);
+  const wire::EncodedFrame mst = encoder.telegram(0xFF, std::vector<std::uint8_t>{0});  // phase 0
+  const Time end = mst_back(sent) + static_cast<Time>(mst.end_bit - mst.start_bit) * kBit;
+  const Time detected = ceil_to(end + 11 * kBit / 2 + 3 * kMclk, kMclk);
+  const Time first_step = cycle_start + 18 * kMclk;
+  const auto tcycdel =
+      static_cast<std::uint16_t>(1 + (detected - first_step) / sim::kMicrosecond + 1);
+  EXPECT_EQ(c.read(0, kTcycdel), tcycdel);
   EXPECT_EQ(sercon_fibre_delay_ps(c.fibres[2]), 150'000);
 }
 
