@@ -72,8 +72,12 @@ TEST(DmaPort, StrobesWhileHeldInResetLatchNoInterrupt) {
   }
 }
 
-// The same for the word API's whole DMA cycles: in reset a read finds nothing to answer it
-// (the floating bus, 0xFFFF) and a write goes nowhere; neither counts or latches anything.
+// The same for the word API's whole DMA cycles (docs/chip.md "Resets": "acknowledge_read()
+// gives 0xFFFF"): in reset a read finds nothing to answer it (the floating bus, 0xFFFF) and
+// a write goes nowhere; neither counts or latches anything. The reset also disables both
+// FIFOs (DMACTRL 0), so 0xFFFF and the count hold either way: INT_DMAERR is what tells a
+// held port from one that answers (an underrun / overrun of a disabled FIFO would latch it,
+// docs/telegram-processing.md §9; dropping either in-reset guard fails here).
 TEST(DmaPort, WholeCyclesWhileHeldInResetDoNothing) {
   DmaPins b;
   DmaPort& port = *b.chip.unit<DmaPort>();
