@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -52,6 +54,23 @@ class PinBusTest : public ::testing::Test {
   void select_ram(bool on) {
     set(Pin::MCSN0, !on);
     set(Pin::MCSN1, !on);
+  }
+  // Runs `change` then `drive` as one step (one scheduler event: watchers hear the pin
+  // changes when it is done, sim/signal.hpp) and says whether the chip refused a line the
+  // board drives in `drive` (std::invalid_argument).
+  bool refused_in_one_step(const std::function<void()>& change,
+                           const std::function<void()>& drive) {
+    bool refused = false;
+    bench.scheduler.at(50'000, [&] {
+      change();
+      try {
+        drive();
+      } catch (const std::invalid_argument&) {
+        refused = true;
+      }
+    });
+    bench.scheduler.run_until(60'000);
+    return refused;
   }
 
   ChipOnBench bench;
@@ -169,18 +188,11 @@ TEST_F(PinBusTest, EndingAReadAndDrivingDataInOneStep) {
   select_registers(true);
   set(Pin::RDN, false);
   ASSERT_TRUE(any_data_driven());
-  bool refused = false;
-  bench.scheduler.at(50'000, [this, &refused] {
-    set(Pin::RDN, true);
-    try {
-      data(0x0003);
-    } catch (const std::invalid_argument&) {
-      refused = true;
-    }
-    set(Pin::WRN, false);
-  });
-  bench.scheduler.run_until(60'000);
-  EXPECT_FALSE(refused);
+  EXPECT_FALSE(refused_in_one_step([this] { set(Pin::RDN, true); },
+                                   [this] {
+                                     data(0x0003);
+                                     set(Pin::WRN, false);
+                                   }));
   EXPECT_EQ(data_lines(), 0x0003);
   set(Pin::WRN, true);
   EXPECT_EQ(chip().reg_read(0x0A), 0x0003);
@@ -192,17 +204,8 @@ TEST_F(PinBusTest, LeavingAdmuxAndDrivingTheAddressInOneStep) {
   data(0x0014);
   set(Pin::ALEL, false);
   ASSERT_TRUE(chip().drives(Pin::A2));
-  bool refused = false;
-  bench.scheduler.at(50'000, [this, &refused] {
-    set(Pin::ADMUX, false);
-    try {
-      address(0x0000);
-    } catch (const std::invalid_argument&) {
-      refused = true;
-    }
-  });
-  bench.scheduler.run_until(60'000);
-  EXPECT_FALSE(refused);
+  EXPECT_FALSE(
+      refused_in_one_step([this] { set(Pin::ADMUX, false); }, [this] { address(0x0000); }));
   EXPECT_FALSE(chip().drives(Pin::A2));
   EXPECT_EQ(chip().pin(Pin::A2).level(), Level::Low);
 }
@@ -216,17 +219,7 @@ TEST_F(PinBusTest, RaisingOutzAndDrivingDataInOneStep) {
   select_registers(true);
   set(Pin::RDN, false);
   ASSERT_TRUE(any_data_driven());
-  bool refused = false;
-  bench.scheduler.at(50'000, [this, &refused] {
-    set(Pin::OUTZ, true);
-    try {
-      data(0x1234);
-    } catch (const std::invalid_argument&) {
-      refused = true;
-    }
-  });
-  bench.scheduler.run_until(60'000);
-  EXPECT_FALSE(refused);
+  EXPECT_FALSE(refused_in_one_step([this] { set(Pin::OUTZ, true); }, [this] { data(0x1234); }));
   EXPECT_EQ(data_lines(), 0x1234);
 }
 
