@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../chip/register_words.hpp"
+#include "ring_bench.hpp"
 #include "sercon/ring/ring.hpp"
 #include "sercon/sercon.h"
 #include "sercon/wire/encoder.hpp"
@@ -24,7 +25,6 @@ using namespace chip::register_words;
 using sim::Time;
 
 constexpr Time kBit = 62'500;   // 16 Mbit/s (SBAUD = SBAUD16 = 0, SCLK 64 MHz)
-constexpr Time kSclk = 15'625;  // 64 MHz
 constexpr Time kMclk = 31'250;  // 32 MHz (the default configuration)
 constexpr std::array<double, 3> kLengths = {10.0, 20.0, 30.0};
 constexpr Time kStart = 1'234'567;  // the master's REGMODE write, off every grid
@@ -96,16 +96,15 @@ struct CRing {
 };
 
 Time ceil_to(Time t, Time grid) { return (t + grid - 1) / grid * grid; }
-Time ceil_to_sclk(Time t) { return ceil_to(t, kSclk); }
 
 // Where the master's MST, sent at `sent`, comes back to its RxD: each fibre's delay (5 ns
 // per metre) and each slave's repeater (2 bit times, rounded up to the SCLK grid;
 // docs/serial-and-ring.md "Repeater").
 Time mst_back(Time sent) {
   Time t = sent + 50'000;          // 10 m to slave 1
-  t = ceil_to_sclk(t + 2 * kBit);  // slave 1's repeater
+  t = testing::repeated(t, kBit);  // slave 1's repeater
   t += 100'000;                    // 20 m to slave 2
-  t = ceil_to_sclk(t + 2 * kBit);  // slave 2's repeater
+  t = testing::repeated(t, kBit);  // slave 2's repeater
   return t + 150'000;              // 30 m back to the master
 }
 
@@ -159,7 +158,7 @@ TEST(CapiFibre, ALoopOfFibresIsTheRingRingBuilds) {
   wire::LineEncoder encoder(true);
   const wire::EncodedFrame mst = encoder.telegram(0xFF, std::vector<std::uint8_t>{0});  // phase 0
   const Time end = mst_back(sent) + static_cast<Time>(mst.end_bit - mst.start_bit) * kBit;
-  const Time detected = ceil_to(end + 11 * kBit / 2 + 3 * kMclk, kMclk);
+  const Time detected = testing::detection(end, kBit, kMclk);
   const Time first_step = cycle_start + 18 * kMclk;
   const auto tcycdel =
       static_cast<std::uint16_t>(1 + (detected - first_step) / sim::kMicrosecond + 1);

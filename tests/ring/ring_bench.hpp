@@ -3,6 +3,7 @@
 // periods and delays, independently of the model).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -16,6 +17,12 @@
 namespace sercon::ring::testing {
 
 inline constexpr sim::Time kSclk = 15'625;  // 64 MHz
+
+// A fibre's documented delay from its length: 5 ns per metre, rounded to the picosecond
+// (docs/serial-and-ring.md, "Fibre"), not read back from the model.
+inline sim::Time fibre_delay(double metres) {
+  return static_cast<sim::Time>(std::llround(metres * 5'000.0));
+}
 
 // The repeater's documented delay: 2 bit times, rounded up to the SCLK grid.
 inline sim::Time repeated(sim::Time arrival, sim::Time bit) {

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -26,12 +25,10 @@ using testing::bit_period_of;
 using testing::config_at_mbit;
 using testing::detection;
 using testing::Ear;
+using testing::fibre_delay;
 using testing::repeated;
 
-// Fibre delays from lengths, not read back from the model: 5 ns per metre
-// (docs/serial-and-ring.md, "Fibre": delay = round(length x 5000 ps/m)); RingOptions makes
-// every fibre 1 m long unless told otherwise.
-Time fibre_delay(double metres) { return static_cast<Time>(std::llround(metres * 5'000.0)); }
+// RingOptions makes every fibre 1 m long unless told otherwise.
 const Time kOneMetre = fibre_delay(1.0);
 
 const std::vector<std::uint8_t> kMst = {0x00};

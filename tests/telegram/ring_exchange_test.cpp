@@ -8,13 +8,13 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "../chip/line_tee.hpp"
 #include "../chip/telegram_bench.hpp"
+#include "../ring/ring_bench.hpp"
 #include "sercon/ring/ring.hpp"
 
 namespace sercon::chip {
@@ -75,11 +75,8 @@ class RingExchange : public ::testing::Test {
     o.fibre_lengths_m = kLengths;
     return o;
   }
-  // Fibre i's delay from its length, not read back from the model: 5 ns per metre
-  // (docs/serial-and-ring.md, "Fibre": delay = round(length x 5000 ps/m)).
-  static Time delay(std::size_t fibre) {
-    return static_cast<Time>(std::llround(kLengths[fibre] * 5'000.0));
-  }
+  // Fibre i's delay from its length (ring_bench.hpp: 5 ns per metre, not read back).
+  static Time delay(std::size_t fibre) { return ring::testing::fibre_delay(kLengths[fibre]); }
 
   void SetUp() override {
     t = timing_16mbit();
