@@ -161,11 +161,7 @@ TEST(ConClk, ResetWhileActiveLowIsNoPulse) {
     b.run_to(b.at_cycle_time(0, 30) + kMicrosecond);  // active
     ASSERT_EQ(b.pin(Pin::CON_CLK).level(), Level::Low);
     b.pin_log.changes.clear();
-    if (by_pin) {
-      b.chip.drive(Pin::RSTN, Level::Low);
-    } else {
-      b.chip.reg_write(kSerMode, 0x0002);  // SWRST
-    }
+    reset_by(b.chip, by_pin);
     b.run_to(2 * kCycle * kMicrosecond);
     EXPECT_TRUE(b.pin_log.changes.empty()) << by_pin;
     EXPECT_EQ(b.pin(Pin::CON_CLK).level(), Level::Low);

@@ -324,11 +324,7 @@ TEST(DivClk, ResetWithinAnActiveLowPulseIsNoPulse) {
     b.run_to(b.at_cycle_time(0, 20) + b.mclk());  // inside the pulse
     ASSERT_EQ(b.pin(Pin::DIV_CLK).level(), Level::Low);
     b.pin_log.changes.clear();
-    if (by_pin) {
-      b.chip.drive(Pin::RSTN, Level::Low);
-    } else {
-      b.chip.reg_write(kSerMode, 0x0002);  // SWRST
-    }
+    reset_by(b.chip, by_pin);
     b.run_to(b.cycle_start(2));
     EXPECT_TRUE(b.pin_log.changes.empty()) << by_pin;
     EXPECT_EQ(b.pin(Pin::DIV_CLK).level(), Level::Low);

@@ -132,11 +132,7 @@ TEST(Interrupts, ResetOfAnAssertedActiveLowPinIsNoPulse) {
     ASSERT_EQ(b.pin(Pin::INT1).level(), Level::Low);
     int0.changes.clear();
     int1.changes.clear();
-    if (by_pin) {
-      b.chip.drive(Pin::RSTN, Level::Low);
-    } else {
-      b.chip.reg_write(kSerMode, 0x0002);  // SWRST
-    }
+    reset_by(b.chip, by_pin);
     EXPECT_TRUE(int0.changes.empty()) << by_pin;
     EXPECT_TRUE(int1.changes.empty()) << by_pin;
     EXPECT_EQ(b.pin(Pin::INT0).level(), Level::Low);

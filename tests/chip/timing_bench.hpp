@@ -24,6 +24,16 @@ using sim::Time;
 
 using namespace register_words;
 
+// A chip reset by the RSTN pin (held low) or by SWRST (register 0x01 bit 1): the tests that
+// check a reset leaves an output without a glitch take both ways (docs/chip.md, "Resets").
+inline void reset_by(Chip& chip, bool by_pin) {
+  if (by_pin) {
+    chip.drive(Pin::RSTN, Level::Low);
+  } else {
+    chip.reg_write(kSerMode, 0x0002);  // SWRST
+  }
+}
+
 // Every change of a pin, with its time.
 class PinLog {
  public:
