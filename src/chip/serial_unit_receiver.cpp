@@ -28,7 +28,7 @@ constexpr std::size_t kMaxTimeline = 4096;
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
     : unit_(unit), scheduler_(unit.chip().scheduler()), recactn_(unit.chip(), Pin::RECACTN, *this) {
-  timeline_.emplace_back(RxdSegment{}, 0, 0);
+  timeline_.push_back();  // nothing received yet
   const FieldRef& recact = unit.fields().recact;
   unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
     const bool on = recact_at(scheduler_.now());
@@ -71,8 +71,31 @@ void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::
 
 // A new last entry (the caller has dropped what it supersedes), not yet taken.
 SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
-  const sim::Time cut = segment.is_burst ? segment.burst_end() : segment.since;
-  return timeline_.emplace_back(std::move(segment), cut, next_serial_++);
+  Entry& e = timeline_.push_back();  // a free slot: no bits, no frames
+  e.cut = segment.is_burst ? segment.burst_end() : segment.since;
+  e.segment = std::move(segment);
+  e.serial = next_serial_++;
+  e.decode = nullptr;
+  return e;
+}
+
+namespace {
+// What a slot holds is let go of when its entry is taken off (the bits go back to their pool).
+template <class Entry>
+void let_go(Entry& e) {
+  e.segment.bits = nullptr;
+  e.frames.clear();
+}
+}  // namespace
+
+void SerialReceiver::drop_front() {
+  let_go(timeline_.front());
+  timeline_.pop_front();
+}
+
+void SerialReceiver::drop_back() {
+  let_go(timeline_.back());
+  timeline_.pop_back();
 }
 
 void SerialReceiver::announce(RxdSegment segment) {
@@ -143,7 +166,7 @@ void SerialReceiver::forward_deferred(std::uint64_t serial) {
 bool SerialReceiver::supersede(sim::Time at) {
   bool changed = false;
   while (!timeline_.empty() && timeline_.back().segment.since >= at) {
-    timeline_.pop_back();
+    drop_back();
     changed = true;
   }
   if (!timeline_.empty() && timeline_.back().segment.is_burst && at < timeline_.back().cut) {
@@ -231,7 +254,7 @@ void SerialReceiver::prune() {
       const bool surely_over = !last.reports_known && last.end + report_lag(e.segment.period) < now;
       if (!surely_over && with_reports(e, e.frames.size() - 1).telegram_report >= now) return;
     }
-    timeline_.erase(timeline_.begin());
+    drop_front();
   }
 }
 

@@ -27,6 +27,7 @@
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/slot_queue.hpp"
 
 namespace sercon::chip {
 
@@ -155,9 +156,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     std::vector<FrameState> more_;
     std::size_t size_ = 0;
   };
+  // A timeline slot, reused in place (sim::SlotQueue): a free one holds no bits and no frames.
   struct Entry {
-    // User-provided: value-initialising the aggregate cleared all of it first.
-    Entry(RxdSegment s, sim::Time c, std::uint64_t n) : segment(std::move(s)), cut(c), serial(n) {}
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
@@ -174,6 +174,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
   void announce(RxdSegment segment);
   Entry& append(RxdSegment segment);
+  void drop_front();  // the entry in force before the one after it
+  void drop_back();   // superseded
   // true: passed on lazily. Inline in line_burst(), as drop_lazy_over() in it: a call less
   // per hop of a lazy chain.
   inline bool try_lazy_hop(const LineBurst& burst);
@@ -238,9 +240,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   static constexpr std::uint8_t kAddress255 = 0xFF;  // MSTs and telegrams to all drives
   // interest_->may_want_addressed(), asked again at every plan and after every report.
   bool addressed_wanted_ = true;
-  // Never empty; front in force now (or earlier). A vector: it holds a handful of entries,
-  // and a deque of entries this size would allocate a block every second one.
-  std::vector<Entry> timeline_;
+  // Never empty; front in force now (or earlier). Slots reused in place: an entry goes in
+  // and one goes out at every telegram a node reads, and a vector's erase moved the rest.
+  sim::SlotQueue<Entry> timeline_;
   std::uint64_t next_serial_ = 1;
   // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach RxD,
   // and when they leave TxD.
