@@ -251,8 +251,10 @@ void SerialReceiver::prune() {
     if (!e.frames.empty()) {
       const FrameState& last = e.frames.back();
       if (last.end >= now) return;
-      const bool surely_over = !last.reports_known && last.end + report_lag(e.segment.period) < now;
-      if (!surely_over && with_reports(e, e.frames.size() - 1).telegram_report >= now) return;
+      if (!surely_over(e, last, now) &&
+          with_reports(e, e.frames.size() - 1).telegram_report >= now) {
+        return;
+      }
     }
     drop_front();
   }
@@ -356,8 +358,10 @@ bool SerialReceiver::candidate(Entry& e, FrameState& st, std::size_t i, bool tel
                                  : interest_->wants_start(st.start, f.address);
     if (!wanted) {
       // Dropped for good once its time has passed, so later plans do not ask again (the
-      // time is only worked out for a frame already over).
-      if (st.end < now && report_time() < now) done = true;
+      // time is only worked out for a frame already over, and not at all when it ended
+      // longer ago than any report lags: a start report without a whole address, which
+      // never comes, is dropped then too).
+      if (st.end < now && (surely_over(e, st, now) || report_time() < now)) done = true;
       return false;
     }
   }

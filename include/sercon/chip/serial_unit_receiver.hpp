@@ -210,6 +210,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     return st;
   }
   void work_out_reports(Entry& e, std::size_t frame) const;
+  // Both of the frame's reports are past at `now`, known without working them out.
+  bool surely_over(const Entry& e, const FrameState& st, sim::Time now) const {
+    return !st.reports_known && st.end + report_lag(e.segment.period) < now;
+  }
   sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
   sim::Time report_lag(sim::Time period) const;             // bound on pipeline(t, period) - t
   void plan_reports();
