@@ -373,10 +373,14 @@ bool SerialReceiver::candidate(Entry& e, FrameState& st, std::size_t i, bool tel
   return t < before;
 }
 
-inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best) {
+inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best, bool fresh) {
   FrameState* st = e.frames.data();
   for (std::size_t i = 0, n = e.frames.size(); i < n; ++i, ++st) {
     if (st->start_done && st->end_done) continue;  // most frames a plan sees
+    if (!fresh && st->reports_known && (st->start_done || st->start_report < now) &&
+        (st->end_done || st->telegram_report < now)) {
+      continue;  // nothing to come: a past report is never planned, done or not
+    }
     if (candidate(e, *st, i, false, now, best.when)) {
       best = Report{st->start_report, e.serial, i, false};
     }
@@ -394,7 +398,7 @@ void SerialReceiver::plan_reports() {
   if (unit_.running() && (on_start_ || on_telegram_)) {
     for (Entry& e : timeline_) {
       if (e.segment.since > best.when) break;  // in time order: the rest start later still
-      if (e.decode) scan(e, now, best);
+      if (e.decode && !all_past(e, now)) scan(e, now, best, false);
     }
   }
   const bool same = report_event_.value != 0 && best.when == report_.when &&
@@ -415,7 +419,7 @@ void SerialReceiver::consider(Entry& e) {
   if (planned <= e.segment.since) return;  // its reports all come after the planned one
   const sim::Time now = scheduler_.now();
   Report best{planned, 0, 0, false};
-  scan(e, now, best);
+  scan(e, now, best, true);
   if (best.serial == 0) return;  // the planned report stays the earliest
   scheduler_.cancel(report_event_);
   report_ = best;

@@ -217,12 +217,22 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
   sim::Time report_lag(sim::Time period) const;             // bound on pipeline(t, period) - t
   void plan_reports();
+  // No report of e's frames can come at or after `now` (a start report without a whole
+  // address never comes): the last frame's detection is past, and the reports of the
+  // frames before it come before it. Worked out from the bound when not known yet.
+  bool all_past(const Entry& e, sim::Time now) const {
+    if (e.frames.empty()) return true;
+    const FrameState& last = e.frames.back();
+    return (last.reports_known ? last.telegram_report : last.end + report_lag(e.segment.period)) <
+           now;
+  }
   bool lazy_report_due(sim::Time now) const;  // lazy_ not empty: a plan must absorb it first
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
   void consider(Entry& e);
   // The earliest report of e's frames the processor wants, if before best.when, into best.
-  void scan(Entry& e, sim::Time now, Report& best);
+  // fresh: e was just taken (none of its report times is known yet).
+  void scan(Entry& e, sim::Time now, Report& best, bool fresh);
   bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
                  sim::Time before);
   void fire_report();
