@@ -105,7 +105,10 @@ void SerialReceiver::announce(RxdSegment segment) {
     throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
                                 std::to_string(now) + " ps)");
   }
-  const bool changed = supersede(at);
+  // Mostly a change after everything announced before: nothing to drop or cut.
+  const Entry& last = timeline_.back();
+  const bool changed =
+      (last.segment.since >= at || (last.segment.is_burst && at < last.cut)) && supersede(at);
   prune();
   if (timeline_.size() >= kMaxTimeline) {
     throw sim::ModelLimit(
