@@ -27,7 +27,10 @@ constexpr std::size_t kMaxTimeline = 4096;
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
-    : unit_(unit), scheduler_(unit.chip().scheduler()), recactn_(unit.chip(), Pin::RECACTN, *this) {
+    : unit_(unit),
+      scheduler_(unit.chip().scheduler()),
+      mclk_(unit.chip().mclk()),
+      recactn_(unit.chip(), Pin::RECACTN, *this) {
   timeline_.push_back();  // nothing received yet
   const FieldRef& recact = unit.fields().recact;
   unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
@@ -386,6 +389,9 @@ inline void SerialReceiver::scan(Entry& e, sim::Time now, Report& best, bool fre
     }
     if (candidate(e, *st, i, false, now, best.when)) {
       best = Report{st->start_report, e.serial, i, false};
+      // A fresh frame's detection comes no earlier than its start report, and asking would
+      // change nothing (it is not past) while there is a handler for it.
+      if (fresh && on_telegram_) continue;
     }
     if (candidate(e, *st, i, true, now, best.when)) {
       best = Report{st->telegram_report, e.serial, i, true};

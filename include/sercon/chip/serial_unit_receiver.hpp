@@ -23,6 +23,7 @@
 #include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
+#include "sercon/chip/mclk_divider.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
@@ -248,6 +249,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
   SerialUnit& unit_;
   sim::Scheduler& scheduler_;  // the chip's, kept here: a hop asks for the time, one pointer less
+  const MclkGrid& mclk_;       // the chip's, fixed for its life: the report times count in it
   SerialUnit::TelegramStartHandler on_start_;
   SerialUnit::TelegramHandler on_telegram_;
   const ReceiveInterest* interest_ = nullptr;

@@ -24,13 +24,13 @@ namespace sercon::chip {
 // The report times (worked out for every frame a node reads, and asked at every lazy hop
 // and prune).
 inline sim::Time SerialReceiver::report_lag(sim::Time period) const {
-  return five_and_a_half_bits(period) + 4 * unit_.chip().mclk_period();
+  return five_and_a_half_bits(period) + 4 * mclk_.period();
 }
 
 inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
   const sim::Time half_bits = five_and_a_half_bits(period);
   // kDetectionEdges MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
-  return unit_.chip().mclk().nth_edge_after(t + half_bits, kDetectionEdges);
+  return mclk_.nth_edge_after(t + half_bits, kDetectionEdges);
 }
 
 }  // namespace sercon::chip
