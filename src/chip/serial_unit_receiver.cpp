@@ -72,35 +72,6 @@ void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::
   announce(RxdSegment::of(at, condition, toggles ? bit_period : 0));
 }
 
-// A new last entry (the caller has dropped what it supersedes), not yet taken.
-SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
-  Entry& e = timeline_.push_back();  // a free slot: no bits, no frames
-  e.cut = segment.is_burst ? segment.burst_end() : segment.since;
-  e.segment = std::move(segment);
-  e.serial = next_serial_++;
-  e.decode = nullptr;
-  return e;
-}
-
-namespace {
-// What a slot holds is let go of when its entry is taken off (the bits go back to their pool).
-template <class Entry>
-void let_go(Entry& e) {
-  e.segment.bits = nullptr;
-  e.frames.clear();
-}
-}  // namespace
-
-void SerialReceiver::drop_front() {
-  let_go(timeline_.front());
-  timeline_.pop_front();
-}
-
-void SerialReceiver::drop_back() {
-  let_go(timeline_.back());
-  timeline_.pop_back();
-}
-
 void SerialReceiver::announce(RxdSegment segment) {
   const sim::Time now = scheduler_.now();
   const sim::Time at = segment.since;
@@ -207,33 +178,6 @@ void SerialReceiver::cut(Entry& e, sim::Time at) {
   }
 }
 
-void SerialReceiver::take(Entry& e) {
-  e.decode = nullptr;
-  const RxdSegment& s = e.segment;
-  if (!s.is_burst || s.period != unit_.bit_period()) {  // distorted: the monitor counts it
-    e.frames.clear();
-    return;
-  }
-  e.decode =
-      s.burst_end() == e.cut
-          ? &decode_burst(s.bits)
-          : &decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
-  e.frames.reset(e.decode->frames.size());
-  work_out(e, 0);
-}
-
-void SerialReceiver::work_out(Entry& e, std::size_t first) {
-  const BurstDecode& d = *e.decode;
-  const sim::Time since = e.segment.since, period = e.segment.period;
-  for (std::size_t i = first; i < e.frames.size(); ++i) {
-    const wire::DecodedFrame& f = d.frames[i];
-    FrameState& st = e.frames[i];
-    st.start = since + static_cast<sim::Time>(f.start_bit) * period;
-    st.end = std::min(since + static_cast<sim::Time>(f.end_bit) * period, e.cut);
-    st.reports_known = false;
-  }
-}
-
 void SerialReceiver::work_out_reports(Entry& e, std::size_t i) const {
   FrameState& st = e.frames[i];
   const sim::Time since = e.segment.since, period = e.segment.period;
@@ -244,26 +188,6 @@ void SerialReceiver::work_out_reports(Entry& e, std::size_t i) const {
                         ? kNever  // no whole address
                         : pipeline(address_in, period);
   st.reports_known = true;
-}
-
-// Entries over and done with: a later one is in force and no report of theirs is to come.
-void SerialReceiver::prune() {
-  const sim::Time now = scheduler_.now();
-  while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
-    Entry& e = timeline_.front();
-    if (e.serial == report_.serial && report_event_.value != 0) return;
-    // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
-    // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
-    if (!e.frames.empty()) {
-      const FrameState& last = e.frames.back();
-      if (last.end >= now) return;
-      if (!surely_over(e, last, now) &&
-          with_reports(e, e.frames.size() - 1).telegram_report >= now) {
-        return;
-      }
-    }
-    drop_front();
-  }
 }
 
 std::size_t SerialReceiver::in_force(sim::Time t) const {

@@ -177,6 +177,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   Entry& append(RxdSegment segment);
   void drop_front();  // the entry in force before the one after it
   void drop_back();   // superseded
+  static void let_go(Entry& e) {
+    e.segment.bits = nullptr;
+    e.frames.clear();
+  }
   // true: passed on lazily. Inline in line_burst(), as drop_lazy_over() in it: a call less
   // per hop of a lazy chain.
   inline bool try_lazy_hop(const LineBurst& burst);

@@ -1,9 +1,12 @@
 // What the receiver's two source files share (serial_unit_receiver.cpp: the timeline and
 // the reports; serial_unit_lazy_hop.cpp: bursts entering RxD and lazy hops): the chain
-// guard and the report times, inline because they are asked at every hop.
+// guard, the report times and the timeline's steps, inline because they are asked at every
+// hop a node reads or absorbs.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <utility>
 
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/lazy_pin.hpp"
@@ -31,6 +34,74 @@ inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
   const sim::Time half_bits = five_and_a_half_bits(period);
   // kDetectionEdges MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
   return mclk_.nth_edge_after(t + half_bits, kDetectionEdges);
+}
+
+// A new last entry (the caller has dropped what it supersedes), not yet taken.
+inline SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
+  Entry& e = timeline_.push_back();  // a free slot: no bits, no frames
+  e.cut = segment.is_burst ? segment.burst_end() : segment.since;
+  e.segment = std::move(segment);
+  e.serial = next_serial_++;
+  e.decode = nullptr;
+  return e;
+}
+
+// What a slot holds is let go of when its entry is taken off (the bits go back to their pool).
+inline void SerialReceiver::drop_front() {
+  let_go(timeline_.front());
+  timeline_.pop_front();
+}
+
+inline void SerialReceiver::drop_back() {
+  let_go(timeline_.back());
+  timeline_.pop_back();
+}
+
+inline void SerialReceiver::take(Entry& e) {
+  e.decode = nullptr;
+  const RxdSegment& s = e.segment;
+  if (!s.is_burst || s.period != unit_.bit_period()) {  // distorted: the monitor counts it
+    e.frames.clear();
+    return;
+  }
+  e.decode =
+      s.burst_end() == e.cut
+          ? &decode_burst(s.bits)
+          : &decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
+  e.frames.reset(e.decode->frames.size());
+  work_out(e, 0);
+}
+
+inline void SerialReceiver::work_out(Entry& e, std::size_t first) {
+  const BurstDecode& d = *e.decode;
+  const sim::Time since = e.segment.since, period = e.segment.period;
+  for (std::size_t i = first; i < e.frames.size(); ++i) {
+    const wire::DecodedFrame& f = d.frames[i];
+    FrameState& st = e.frames[i];
+    st.start = since + static_cast<sim::Time>(f.start_bit) * period;
+    st.end = std::min(since + static_cast<sim::Time>(f.end_bit) * period, e.cut);
+    st.reports_known = false;
+  }
+}
+
+// Entries over and done with: a later one is in force and no report of theirs is to come.
+inline void SerialReceiver::prune() {
+  const sim::Time now = scheduler_.now();
+  while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
+    Entry& e = timeline_.front();
+    if (e.serial == report_.serial && report_event_.value != 0) return;
+    // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
+    // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
+    if (!e.frames.empty()) {
+      const FrameState& last = e.frames.back();
+      if (last.end >= now) return;
+      if (!surely_over(e, last, now) &&
+          with_reports(e, e.frames.size() - 1).telegram_report >= now) {
+        return;
+      }
+    }
+    drop_front();
+  }
 }
 
 }  // namespace sercon::chip
