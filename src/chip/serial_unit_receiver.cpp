@@ -107,7 +107,7 @@ void SerialReceiver::announce(RxdSegment segment) {
   pass_to_repeater(e);
 }
 
-void SerialReceiver::pass_to_repeater(const Entry& e) {
+inline void SerialReceiver::pass_to_repeater(const Entry& e) {
   if (chain_depth >= kMaxChain) {
     // Go on when the change reaches RxD: the chain starts again from the scheduler.
     const std::uint64_t serial = e.serial;
@@ -372,6 +372,11 @@ void SerialReceiver::fire_report() {
   if (r.telegram) {
     st.end_done = true;
     on_telegram_(ReceivedTelegram{start, st.end, r.when, e->segment.period, f});
+    if (nothing_after_detection(r)) {  // what plan_reports() would find, without the walk
+      refresh_interest();
+      report_ = Report{kNever, 0, 0, false};
+      return;
+    }
   } else {
     st.start_done = true;
     on_start_(start, f.address);
@@ -381,12 +386,30 @@ void SerialReceiver::fire_report() {
   plan_reports();
 }
 
+// After the detection of a burst's only frame, mostly the last burst announced: no report of
+// an entry before is still to come, nor the frame's start report, so a plan would find
+// nothing (a walk of the entries before, all past, says so more cheaply than a plan).
+inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
+  if (!lazy_.empty() || report_event_.value != 0 || fired.frame != 0) return false;
+  const Entry& last = timeline_.back();
+  if (last.serial != fired.serial || !last.decode || last.frames.size() != 1) return false;
+  const sim::Time now = scheduler_.now();
+  const FrameState& st = last.frames[0];
+  if (!st.end_done || (!st.start_done && !(st.reports_known && st.start_report < now))) {
+    return false;
+  }
+  for (const Entry* e = timeline_.begin(); e != &last; ++e) {
+    if (e->decode && !all_past(*e, now)) return false;
+  }
+  return true;
+}
+
 // After a frame's start report, the earliest report a plan can find is that frame's
 // detection when the processor wants it: every report of an entry before comes before the
 // frame's start (frames do not overlap, and the pipeline keeps their order), every other
 // report of this entry or a later one (the lazy bursts too) after its end. So it is
 // planned without the walk, as plan_reports() would plan it; otherwise the walk decides.
-bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
+inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
   if (!on_telegram_ || !unit_.running()) return false;
   Entry* e = find(fired.serial);  // again: the handler may have pruned or added entries
   if (e == nullptr || !e->decode || fired.frame >= e->frames.size()) return false;

@@ -198,7 +198,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   inline void drop_lazy_over(sim::Time now);
   // For the const readers of the timeline: the receiver itself is never const.
   void absorb_lazy_to_read() const { const_cast<SerialReceiver*>(this)->absorb_lazy(); }
-  void pass_to_repeater(const Entry& e);
+  inline void pass_to_repeater(const Entry& e);
   void forward_deferred(std::uint64_t serial);
   bool supersede(sim::Time at);  // true when something announced before was changed
   void cut(Entry& entry, sim::Time at);
@@ -241,7 +241,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
                  sim::Time before);
   void fire_report();
-  bool plan_telegram_after_start(const Report& fired);  // true: planned
+  inline bool plan_telegram_after_start(const Report& fired);      // true: planned
+  inline bool nothing_after_detection(const Report& fired) const;  // a plan would find none
   void plan_monitor();
   void fire_monitor();
   bool good(const RxdSegment& s) const;  // edges at the receiver's rate
