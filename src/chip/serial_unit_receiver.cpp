@@ -72,7 +72,7 @@ void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::
   announce(RxdSegment::of(at, condition, toggles ? bit_period : 0));
 }
 
-void SerialReceiver::announce(RxdSegment segment) {
+void SerialReceiver::announce(RxdSegment&& segment) {
   const sim::Time now = scheduler_.now();
   const sim::Time at = segment.since;
   if (at < now) {

@@ -173,8 +173,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     bool telegram = false;  // the detection; false: address in
   };
 
-  void announce(RxdSegment segment);
-  Entry& append(RxdSegment segment);
+  void announce(RxdSegment&& segment);
+  Entry& append(RxdSegment&& segment);
   void drop_front();  // the entry in force before the one after it
   void drop_back();   // superseded
   static void let_go(Entry& e) {

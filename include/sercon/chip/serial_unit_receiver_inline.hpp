@@ -37,7 +37,7 @@ inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
 }
 
 // A new last entry (the caller has dropped what it supersedes), not yet taken.
-inline SerialReceiver::Entry& SerialReceiver::append(RxdSegment segment) {
+inline SerialReceiver::Entry& SerialReceiver::append(RxdSegment&& segment) {
   Entry& e = timeline_.push_back();  // a free slot: no bits, no frames
   e.cut = segment.is_burst ? segment.burst_end() : segment.since;
   e.segment = std::move(segment);

@@ -63,7 +63,7 @@ class SlotQueue {
     tail_ = head_ + n;
   }
 
-  static constexpr std::size_t kFirstSize = 16;
+  static constexpr std::size_t kFirstSize = 32;
   std::vector<T> slots_;
   T* head_ = nullptr;  // [head_, tail_) in slots_ hold the elements
   T* tail_ = nullptr;
