@@ -222,6 +222,14 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
   sim::Time report_lag(sim::Time period) const;             // bound on pipeline(t, period) - t
   void plan_reports();
+  [[gnu::noinline]] void plan_by_walk(sim::Time now);  // plan_reports() but for its shortcut
+  // No report of any entry can come at or after `now`.
+  bool all_past(sim::Time now) const {
+    for (const Entry& e : timeline_) {
+      if (e.decode && !all_past(e, now)) return false;
+    }
+    return true;
+  }
   // No report of e's frames can come at or after `now` (a start report without a whole
   // address never comes): the last frame's detection is past, and the reports of the
   // frames before it come before it. Worked out from the bound when not known yet.
