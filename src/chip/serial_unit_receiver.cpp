@@ -108,16 +108,17 @@ void SerialReceiver::announce(RxdSegment&& segment) {
 }
 
 inline void SerialReceiver::pass_to_repeater(const Entry& e) {
-  if (chain_depth >= kMaxChain) {
-    // Go on when the change reaches RxD: the chain starts again from the scheduler.
-    const std::uint64_t serial = e.serial;
-    std::erase_if(deferred_, [this](const Deferred& d) { return !scheduler_.pending(d.event); });
-    deferred_.push_back(Deferred{
-        serial, scheduler_.at(e.segment.since, [this, serial] { forward_deferred(serial); })});
-    return;
-  }
+  if (chain_depth >= kMaxChain) return defer_forward(e);
   const sim::ScopedCount link(chain_depth);
   unit_.repeater().input(e.segment);
+}
+
+// Go on when the change reaches RxD: the chain starts again from the scheduler.
+void SerialReceiver::defer_forward(const Entry& e) {
+  const std::uint64_t serial = e.serial;
+  std::erase_if(deferred_, [this](const Deferred& d) { return !scheduler_.pending(d.event); });
+  deferred_.push_back(Deferred{
+      serial, scheduler_.at(e.segment.since, [this, serial] { forward_deferred(serial); })});
 }
 
 // The entry and what was announced after it go again, in order (an entry announced after

@@ -199,6 +199,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // For the const readers of the timeline: the receiver itself is never const.
   void absorb_lazy_to_read() const { const_cast<SerialReceiver*>(this)->absorb_lazy(); }
   inline void pass_to_repeater(const Entry& e);
+  [[gnu::cold, gnu::noinline]] void defer_forward(const Entry& e);  // the chain too deep
   void forward_deferred(std::uint64_t serial);
   bool supersede(sim::Time at);  // true when something announced before was changed
   void cut(Entry& entry, sim::Time at);
