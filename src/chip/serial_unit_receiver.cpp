@@ -31,7 +31,7 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
       scheduler_(unit.chip().scheduler()),
       mclk_(unit.chip().mclk()),
       recactn_(unit.chip(), Pin::RECACTN, *this) {
-  timeline_.push_back();  // nothing received yet
+  timeline_.emplace_back(RxdSegment{}, 0, 0);
   const FieldRef& recact = unit.fields().recact;
   unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
     const bool on = recact_at(scheduler_.now());
@@ -144,7 +144,7 @@ void SerialReceiver::forward_deferred(std::uint64_t serial) {
 bool SerialReceiver::supersede(sim::Time at) {
   bool changed = false;
   while (!timeline_.empty() && timeline_.back().segment.since >= at) {
-    drop_back();
+    timeline_.pop_back();
     changed = true;
   }
   if (!timeline_.empty() && timeline_.back().segment.is_burst && at < timeline_.back().cut) {
@@ -409,7 +409,7 @@ inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
   if (!st.end_done || (!st.start_done && !(st.reports_known && st.start_report < now))) {
     return false;
   }
-  for (const Entry* e = timeline_.begin(); e != &last; ++e) {
+  for (const Entry* e = timeline_.data(); e != &last; ++e) {
     if (e->decode && !all_past(*e, now)) return false;
   }
   return true;

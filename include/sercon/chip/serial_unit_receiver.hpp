@@ -28,7 +28,6 @@
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
-#include "sercon/sim/slot_queue.hpp"
 
 namespace sercon::chip {
 
@@ -93,17 +92,17 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
    public:
     FrameStates() noexcept {}  // user-provided: an entry's value-initialisation leaves inline_
     FrameStates(const FrameStates& other) : more_(other.more_), size_(other.size_) {
-      if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+      if (size_ <= kInline) copy_inline(other);
     }
     FrameStates(FrameStates&& other) noexcept : more_(std::move(other.more_)), size_(other.size_) {
-      if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+      if (size_ <= kInline) copy_inline(other);
       other.size_ = 0;
     }
     FrameStates& operator=(const FrameStates& other) {
       if (this != &other) {
         more_ = other.more_;
         size_ = other.size_;
-        if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+        if (size_ <= kInline) copy_inline(other);
       }
       return *this;
     }
@@ -111,7 +110,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
       if (this != &other) {
         more_ = std::move(other.more_);
         size_ = other.size_;
-        if (size_ <= kInline) std::copy_n(other.inline_.begin(), size_, inline_.begin());
+        if (size_ <= kInline) copy_inline(other);
         other.more_.clear();
         other.size_ = 0;
       }
@@ -153,12 +152,21 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
    private:
     static constexpr std::size_t kInline = 2;
+    // The first size_ (<= kInline) states of `other`, each copied as a whole: copy_n of a
+    // count known only at run time was a memmove call at every entry the timeline moves.
+    void copy_inline(const FrameStates& other) {
+      static_assert(kInline == 2);
+      if (size_ > 0) inline_[0] = other.inline_[0];
+      if (size_ > 1) inline_[1] = other.inline_[1];
+    }
     std::array<FrameState, kInline> inline_;  // the first size_ set (when size_ <= kInline)
     std::vector<FrameState> more_;
     std::size_t size_ = 0;
   };
-  // A timeline slot, reused in place (sim::SlotQueue): a free one holds no bits and no frames.
   struct Entry {
+    // User-provided: value-initialising the aggregate cleared all of it first.
+    Entry(RxdSegment&& s, sim::Time c, std::uint64_t n)
+        : segment(std::move(s)), cut(c), serial(n) {}
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
@@ -175,12 +183,6 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
   void announce(RxdSegment&& segment);
   Entry& append(RxdSegment&& segment);
-  void drop_front();  // the entry in force before the one after it
-  void drop_back();   // superseded
-  static void let_go(Entry& e) {
-    e.segment.bits = nullptr;
-    e.frames.clear();
-  }
   // true: passed on lazily. Inline in line_burst(), as drop_lazy_over() in it: a call less
   // per hop of a lazy chain.
   inline bool try_lazy_hop(const LineBurst& burst);
@@ -270,9 +272,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   static constexpr std::uint8_t kAddress255 = 0xFF;  // MSTs and telegrams to all drives
   // interest_->may_want_addressed(), asked again at every plan and after every report.
   bool addressed_wanted_ = true;
-  // Never empty; front in force now (or earlier). Slots reused in place: an entry goes in
-  // and one goes out at every telegram a node reads, and a vector's erase moved the rest.
-  sim::SlotQueue<Entry> timeline_;
+  // Never empty; front in force now (or earlier). A vector: it holds a handful of entries,
+  // and a deque of entries this size would allocate a block every second one. (A queue of
+  // slots reused in place, which moves nothing when the front goes, ran 25 % slower with
+  // 254 slaves: its slots, cycled through, spread each node's timeline over more memory.)
+  std::vector<Entry> timeline_;
   std::uint64_t next_serial_ = 1;
   // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach RxD,
   // and when they leave TxD.

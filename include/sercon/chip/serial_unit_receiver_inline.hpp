@@ -38,23 +38,8 @@ inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
 
 // A new last entry (the caller has dropped what it supersedes), not yet taken.
 inline SerialReceiver::Entry& SerialReceiver::append(RxdSegment&& segment) {
-  Entry& e = timeline_.push_back();  // a free slot: no bits, no frames
-  e.cut = segment.is_burst ? segment.burst_end() : segment.since;
-  e.segment = std::move(segment);
-  e.serial = next_serial_++;
-  e.decode = nullptr;
-  return e;
-}
-
-// What a slot holds is let go of when its entry is taken off (the bits go back to their pool).
-inline void SerialReceiver::drop_front() {
-  let_go(timeline_.front());
-  timeline_.pop_front();
-}
-
-inline void SerialReceiver::drop_back() {
-  let_go(timeline_.back());
-  timeline_.pop_back();
+  const sim::Time cut = segment.is_burst ? segment.burst_end() : segment.since;
+  return timeline_.emplace_back(std::move(segment), cut, next_serial_++);
 }
 
 inline void SerialReceiver::take(Entry& e) {
@@ -100,7 +85,7 @@ inline void SerialReceiver::prune() {
         return;
       }
     }
-    drop_front();
+    timeline_.erase(timeline_.begin());
   }
 }
 
