@@ -74,7 +74,8 @@ class Fibre {
     chip::LineBurst burst;
   };
   void take(Change change);  // a condition from the input (its time still the input's)
-  void check_not_past(sim::Time at) const;  // std::invalid_argument for a time before now
+  // std::invalid_argument for a time before now. Out of line and cold: a hop asks first.
+  [[gnu::cold]] void check_not_past(sim::Time at) const;
   // A new last change of the history (the far end's time) at `start`, for the caller to
   // fill; the later word wins. Inline (fibre.cpp, its only callers).
   inline Change& record_at(sim::Time start);
