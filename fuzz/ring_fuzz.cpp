@@ -472,8 +472,8 @@ class Tap final : public LineListener {
     settled_.line_burst(b);
     to_.line_burst(b);
   }
-  bool pass_through(const LineBurst& b, LineListener*& next, LineBurst& out) override {
-    const LineBurst copy = b;  // `out` may be `b`
+  bool pass_through(const LineBurst& b, LineListener*& next, const LineBurst*& out) override {
+    const LineBurst copy = b;  // `b` may live where the listener books it
     if (!to_.pass_through(b, next, out)) return false;
     settled_.line_burst(copy);
     return true;

@@ -64,38 +64,37 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   const sim::Time leaves = repeater.forward_time(b.start);
   if (!lazy_.empty()) {
     const LazyBurst& last = lazy_.back();
-    if (last.burst.end() > b.start || last.leaves >= leaves) return false;
+    if (last.end_at_rxd() > b.start || last.leaves() >= leaves) return false;
   } else {
     const Entry& last = timeline_.back();
     if (last.segment.since >= b.start || !good(last.segment)) return false;
     if (last.segment.is_burst && b.start < last.cut) return false;
   }
-  // A copy first: `b` may live in the history of a fibre this hop books into (a node whose
-  // TxD comes back to its own RxD), which may move it.
-  LazyBurst kept{b, leaves};
+  // The burst as it leaves TxD, kept and handed to the stages. A copy first: `b` may live in
+  // the history of a fibre this hop books into (a node whose TxD comes back to its own
+  // RxD), which may move it; `b` is not read after the stages.
+  LazyBurst kept{LineBurst{leaves, b.bit_period, b.bits}, b.start};
   LineListener* next = nullptr;
-  // The burst as it leaves TxD; the stages read it all before they set it to the burst as
-  // it reaches `next` (no temporary per stage).
-  LineBurst out{leaves, b.bit_period, b.bits};
-  if (!repeater.pass_through(out, next, out)) return false;
+  const LineBurst* out = nullptr;
+  if (!repeater.pass_through(kept.leaving, next, out)) return false;
   lazy_.push_back(std::move(kept));
   ++lazy_hops_taken_;
   prune_lazy(now);
   const sim::ScopedCount link(chain_depth);
-  next->line_burst(out);
+  next->line_burst(*out);
   return true;
 }
 
 inline void SerialReceiver::prune_lazy(sim::Time now) {
-  if (lazy_.size() > 1 && lazy_[1].leaves <= now) drop_lazy_over(now);  // mostly not
+  if (lazy_.size() > 1 && lazy_[1].leaves() <= now) drop_lazy_over(now);  // mostly not
 }
 
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
 // RxD too) and this one's reports would be past. The full path would have dropped them.
 inline void SerialReceiver::drop_lazy_over(sim::Time now) {
-  while (lazy_.size() > 1 && lazy_[1].leaves <= now) {
-    const LineBurst& front = lazy_.front().burst;
-    if (front.end() + report_lag(front.bit_period) >= now) return;
+  while (lazy_.size() > 1 && lazy_[1].leaves() <= now) {
+    const LazyBurst& front = lazy_.front();
+    if (front.end_at_rxd() + report_lag(front.leaving.bit_period) >= now) return;
     lazy_.pop_front();
   }
 }
@@ -111,11 +110,11 @@ void SerialReceiver::absorb_waiting() {
   } let_go{lazy_};
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
-    const LineBurst& b = lazy.burst;
-    expect_absorbed_in_order("RxD", timeline_.back().segment.since, b.start);
+    const LineBurst& b = lazy.leaving;
+    expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
     prune();
-    take(append(RxdSegment::of(b)));
-    unit_.repeater().absorb(b, lazy.leaves);
+    take(append(RxdSegment{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits}));
+    unit_.repeater().absorb(b);
   }
 }
 
@@ -128,11 +127,12 @@ void SerialReceiver::absorb_waiting() {
 bool SerialReceiver::lazy_report_due(sim::Time now) const {
   if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
-    const LineBurst& b = lazy_[i].burst;
-    if (b.end() + report_lag(b.bit_period) < now) continue;  // its reports are past
+    const LazyBurst& lazy = lazy_[i];
+    const LineBurst& b = lazy.leaving;
+    if (lazy.end_at_rxd() + report_lag(b.bit_period) < now) continue;  // its reports are past
     for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
       if (!may_want(f)) continue;
-      const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
+      const sim::Time start = lazy.arrived + static_cast<sim::Time>(f.start_bit) * b.bit_period;
       if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
         return true;
       }

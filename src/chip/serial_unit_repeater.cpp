@@ -70,11 +70,12 @@ void SerialRepeater::input(const RxdSegment& segment) {
   emit_from(at);
 }
 
-void SerialRepeater::absorb(const LineBurst& burst, sim::Time leaves) {
+void SerialRepeater::absorb(const LineBurst& leaving) {
+  const sim::Time leaves = leaving.start;
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
   prune();
-  append_burst(background_, burst, leaves);
-  unit_.outputs().absorb(LineBurst{leaves, burst.bit_period, burst.bits});
+  append_burst(background_, leaving, leaves);
+  unit_.outputs().absorb(leaving);
 }
 
 void SerialRepeater::own(const LineBurst& burst) {

@@ -117,12 +117,12 @@ void Fibre::drop_from(sim::Time start) {
 
 // A lazy hop (line.hpp): whole and without bit errors, the fibre passes a burst on as it
 // is, so the sender may deliver it to the far end itself.
-bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& next, LineBurst& out) {
+bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& next,
+                                const LineBurst*& out) {
   Fibre& f = fibre_;
   if (f.broken_ || f.errors_.enabled() || f.output_ == nullptr) return false;
   if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
-  // Read first: `burst` may live in this history (a TxD looped back to its own RxD), and
-  // `out` may be `burst` itself (the lazy hop's one burst).
+  // Read first: `burst` may live in this history (a TxD looped back to its own RxD).
   const sim::Time start = burst.start + f.delay_;
   const sim::Time period = burst.bit_period;
   SharedBits bits = burst.bits;
@@ -132,7 +132,7 @@ bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& nex
   c.burst.bit_period = period;
   c.burst.bits = std::move(bits);
   next = f.output_;
-  out = c.burst;
+  out = &c.burst;  // as pass_on() hands it on
   return true;
 }
 

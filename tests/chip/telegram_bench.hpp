@@ -73,12 +73,12 @@ class TestFibre final : public LineListener {
   // A lazy hop through this fibre (line.hpp): taken as line_burst() takes it, handed back
   // for the sender to deliver. So the rings built of these fibres run the chips' lazy hops,
   // as ring::Ring does. A telegram to corrupt takes line_burst().
-  bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) override {
+  bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out) override {
     if (target_ == nullptr || corrupt_countdown_ > 0) return false;
     settled_.line_burst(burst);
-    const Time start = burst.start + delay_;  // read first: `out` may be `burst`
+    passed_ = LineBurst{burst.start + delay_, burst.bit_period, burst.bits};
     next = target_;
-    out = LineBurst{start, burst.bit_period, burst.bits};
+    out = &passed_;
     return true;
   }
 
@@ -135,6 +135,7 @@ class TestFibre final : public LineListener {
   LineListener* broken_ = nullptr;  // the far end while broken
   unsigned corrupt_countdown_ = 0;
   std::size_t corrupt_bit_ = 0;
+  LineBurst passed_;  // the last burst handed back by pass_through, as it reaches target_
   Log log_;
   SettledLine settled_;
 };

@@ -75,9 +75,10 @@ class LineListener {
   // Lazy hops (docs/serial-and-ring.md, "Lazy hops"): a listener that passes a burst on
   // unchanged to exactly one other listener (a whole fibre without bit errors) may take it
   // as line_burst() would and, instead of telling that one, hand it back: `next` and the
-  // burst as it reaches `next`, for the caller to deliver. False (the default): nothing was
-  // taken, call line_burst().
-  virtual bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
+  // burst as it reaches `next`, for the caller to deliver at once (`out` points into the
+  // listener, valid until it is told anything else: no copy of the bits per hop). False
+  // (the default): nothing was taken, call line_burst().
+  virtual bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out) {
     (void)burst, (void)next, (void)out;
     return false;
   }

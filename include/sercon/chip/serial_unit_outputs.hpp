@@ -42,7 +42,7 @@ class TxdOutputs {
   // (LineListener::pass_through); the line itself takes the burst later, by absorb(), and
   // until then nothing else here may read it (the receiver's absorb_lazy() comes first).
   // Inline (serial_unit_pass_through.hpp).
-  inline bool pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out);
+  inline bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
   // A burst passed through before: into the line as line_burst() would, no listener told.
   void absorb(const LineBurst& burst);
 

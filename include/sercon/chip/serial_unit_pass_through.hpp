@@ -18,7 +18,8 @@ inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
   return static_cast<sim::Time>(by_sclk_.divide(static_cast<std::uint64_t>(due + sclk - 1))) * sclk;
 }
 
-inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next, LineBurst& out) {
+inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,
+                                     const LineBurst*& out) {
   LineListener* only = lone_follower_;
   // Nothing announced at or after it to drop, and no change between dark and light (the
   // pins' plan stays as it is): what line_burst() would do is only to keep it.
@@ -31,7 +32,7 @@ inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next
 }
 
 inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*& next,
-                                         LineBurst& out) {
+                                         const LineBurst*& out) {
   const sim::Time leaves = leaving.start;
   if (!repon_ || unit_.bit_period() == 0) return false;
   // What prune() would leave: no own telegram not yet over (they end in order), and the

@@ -278,11 +278,13 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // 254 slaves: its slots, cycled through, spread each node's timeline over more memory.)
   std::vector<Entry> timeline_;
   std::uint64_t next_serial_ = 1;
-  // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach RxD,
-  // and when they leave TxD.
+  // Bursts passed on by lazy hops and not yet absorbed, in time order: as they leave TxD
+  // (the burst the hop handed on, so it needs no copy of its own), and when they reached RxD.
   struct LazyBurst {
-    LineBurst burst;
-    sim::Time leaves = 0;
+    LineBurst leaving;
+    sim::Time arrived = 0;
+    sim::Time leaves() const { return leaving.start; }
+    sim::Time end_at_rxd() const { return arrived + leaving.duration(); }
   };
   sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;

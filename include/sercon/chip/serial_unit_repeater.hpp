@@ -36,10 +36,10 @@ class SerialRepeater {
   // would go straight on (REPON on, nothing of its own in the way or announced after it),
   // is handed to TxD's pass_through() at the time it leaves; absorb() takes it into the
   // repeater's line (and TxD's) later, as input() would have, telling no one.
-  // `leaving` starts at forward_time(the start at RxD); `out` may be `leaving` itself.
+  // `leaving` starts at forward_time(the start at RxD); `absorb` gets it again.
   // Inline (serial_unit_pass_through.hpp).
-  inline bool pass_through(const LineBurst& leaving, LineListener*& next, LineBurst& out);
-  void absorb(const LineBurst& burst, sim::Time leaves);
+  inline bool pass_through(const LineBurst& leaving, LineListener*& next, const LineBurst*& out);
+  void absorb(const LineBurst& leaving);
 
   // When something that reaches RxD at `t` leaves on TxD.
   inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp

@@ -60,7 +60,7 @@ class Fibre {
     void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
     void line_burst(const chip::LineBurst& burst) override;
     bool pass_through(const chip::LineBurst& burst, chip::LineListener*& next,
-                      chip::LineBurst& out) override;
+                      const chip::LineBurst*& out) override;
 
    private:
     Fibre& fibre_;
