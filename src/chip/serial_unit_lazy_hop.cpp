@@ -62,7 +62,8 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   // (the line monitor hears nothing): announce() would only keep it.
   SerialRepeater& repeater = unit_.repeater();
   const sim::Time leaves = repeater.forward_time(b.start);
-  if (!lazy_.empty()) {
+  const bool after_lazy = !lazy_.empty();
+  if (after_lazy) {
     const LazyBurst& last = lazy_.back();
     if (last.end_at_rxd() > b.start || last.leaves() >= leaves) return false;
   } else {
@@ -76,7 +77,13 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   LazyBurst kept{LineBurst{leaves, b.bit_period, b.bits}, b.start};
   LineListener* next = nullptr;
   const LineBurst* out = nullptr;
-  if (!repeater.pass_through(kept.leaving, next, out)) return false;
+  // After a lazy hop here nothing has changed the repeater or TxD (every way into them
+  // absorbs the lazy bursts first), and this burst leaves after that one: their checks
+  // hold still, only the listener's own are left.
+  const bool passed = after_lazy
+                          ? unit_.outputs().lone_follower()->pass_through(kept.leaving, next, out)
+                          : repeater.pass_through(kept.leaving, next, out);
+  if (!passed) return false;
   lazy_.push_back(std::move(kept));
   ++lazy_hops_taken_;
   prune_lazy(now);

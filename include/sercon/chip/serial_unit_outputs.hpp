@@ -43,6 +43,8 @@ class TxdOutputs {
   // until then nothing else here may read it (the receiver's absorb_lazy() comes first).
   // Inline (serial_unit_pass_through.hpp).
   inline bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
+  // The one listener following the line (null: none, or two); set while bursts are lazy.
+  LineListener* lone_follower() const { return lone_follower_; }
   // A burst passed through before: into the line as line_burst() would, no listener told.
   void absorb(const LineBurst& burst);
 
