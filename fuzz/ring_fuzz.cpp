@@ -472,12 +472,14 @@ class Tap final : public LineListener {
     settled_.line_burst(b);
     to_.line_burst(b);
   }
-  bool pass_through(const LineBurst& b, LineListener*& next, const LineBurst*& out) override {
+  bool pass_through(const LineBurst& b, LineListener*& next, const LineBurst*& out,
+                    sercon::chip::PassedBursts& sender) override {
     const LineBurst copy = b;  // `b` may live where the listener books it
-    if (!to_.pass_through(b, next, out)) return false;
+    if (!to_.pass_through(b, next, out, sender)) return false;
     settled_.line_burst(copy);
     return true;
   }
+  void book_passed(const LineBurst& b) override { to_.book_passed(b); }
 
  private:
   LineLog log_;

@@ -80,10 +80,11 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   // After a lazy hop here nothing has changed the repeater or TxD (every way into them
   // absorbs the lazy bursts first), and this burst leaves after that one: their checks
   // hold still, only the listener's own are left.
-  const bool passed = after_lazy
-                          ? unit_.outputs().lone_follower()->pass_through(kept.leaving, next, out)
-                          : repeater.pass_through(kept.leaving, next, out);
+  const bool passed =
+      after_lazy ? unit_.outputs().lone_follower()->pass_through(kept.leaving, next, out, *this)
+                 : repeater.pass_through(kept.leaving, next, out);
   if (!passed) return false;
+  kept.reaches = out->start;
   lazy_.push_back(std::move(kept));
   ++lazy_hops_taken_;
   prune_lazy(now);
@@ -93,13 +94,15 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
 }
 
 inline void SerialReceiver::prune_lazy(sim::Time now) {
-  if (lazy_.size() > 1 && lazy_[1].leaves() <= now) drop_lazy_over(now);  // mostly not
+  if (lazy_.size() > 1 && lazy_[1].reaches <= now) drop_lazy_over(now);  // mostly not
 }
 
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
-// RxD too) and this one's reports would be past. The full path would have dropped them.
+// RxD too) and at the next receiver (the TxD listener's booking, made when absorbed, is
+// superseded there), and this one's reports would be past. The full path would have
+// dropped them.
 inline void SerialReceiver::drop_lazy_over(sim::Time now) {
-  while (lazy_.size() > 1 && lazy_[1].leaves() <= now) {
+  while (lazy_.size() > 1 && lazy_[1].reaches <= now) {
     const LazyBurst& front = lazy_.front();
     if (front.end_at_rxd() + report_lag(front.leaving.bit_period) >= now) return;
     lazy_.pop_front();

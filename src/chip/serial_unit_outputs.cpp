@@ -153,6 +153,7 @@ void TxdOutputs::absorb(const LineBurst& burst) {
   expect_absorbed_in_order("TxD", line_.back().since, burst.start);
   prune();
   append_burst(line_, burst, burst.start);
+  lone_follower_->book_passed(burst);  // it took the burst by pass_through
 }
 
 // The pins change only where the line goes dark or lights up; an announcement that does

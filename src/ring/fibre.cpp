@@ -38,6 +38,7 @@ Fibre::~Fibre() {
 }
 
 void Fibre::connect(chip::LineListener& output) {
+  book_passed();
   chip::LineListener* const old = output_;
   output_ = &output;
   // The receiver it leaves has no signal any more, as after a break. Switched first: what
@@ -73,6 +74,7 @@ void Fibre::Input::line_burst(const LineBurst& burst) {
   Fibre& f = fibre_;
   if (burst.start < f.scheduler_.now()) [[unlikely]]
     f.check_not_past(burst.start);
+  f.book_passed();
   // Read first: `burst` may live in this history (a TxD looped back to its own RxD).
   const sim::Time start = burst.start + f.delay_;
   const sim::Time period = burst.bit_period;
@@ -95,6 +97,7 @@ void Fibre::check_not_past(sim::Time at) const {
 
 void Fibre::take(Change change) {
   check_not_past(change.burst.start);
+  book_passed();
   change.burst.start += delay_;
   if (change.is_burst && errors_.enabled()) change.burst.bits = errors_.apply(change.burst.bits);
   record_at(change.burst.start) = std::move(change);
@@ -116,13 +119,27 @@ void Fibre::drop_from(sim::Time start) {
 }
 
 // A lazy hop (line.hpp): whole and without bit errors, the fibre passes a burst on as it
-// is, so the sender may deliver it to the far end itself.
+// is, so the sender may deliver it to the far end itself. The sender keeps it and books it
+// here when asked (book_passed): a history entry per hop cost as much as the rest of it.
+// Bursts from another sender still waiting to be booked: the full path, which books them.
 bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& next,
-                                const LineBurst*& out) {
+                                const LineBurst*& out, chip::PassedBursts& sender) {
   Fibre& f = fibre_;
   if (f.broken_ || f.errors_.enabled() || f.output_ == nullptr) return false;
   if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
-  // Read first: `burst` may live in this history (a TxD looped back to its own RxD).
+  if (f.passed_from_ != nullptr && f.passed_from_ != &sender) return false;
+  f.passed_from_ = &sender;
+  f.last_passed_ = burst.start + f.delay_;
+  f.passed_.start = f.last_passed_;
+  f.passed_.bit_period = burst.bit_period;
+  f.passed_.bits = burst.bits;
+  next = f.output_;
+  out = &f.passed_;
+  return true;
+}
+
+void Fibre::Input::book_passed(const LineBurst& burst) {
+  Fibre& f = fibre_;
   const sim::Time start = burst.start + f.delay_;
   const sim::Time period = burst.bit_period;
   SharedBits bits = burst.bits;
@@ -131,9 +148,7 @@ bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& nex
   c.burst.start = start;
   c.burst.bit_period = period;
   c.burst.bits = std::move(bits);
-  next = f.output_;
-  out = &c.burst;  // as pass_on() hands it on
-  return true;
+  if (start == f.last_passed_) f.passed_from_ = nullptr;  // the last one: all are booked
 }
 
 void Fibre::pass_on(const Change& c) {
@@ -143,6 +158,7 @@ void Fibre::pass_on(const Change& c) {
 }
 
 void Fibre::tell_far_end() {
+  book_passed();
   if (!output_) return;
   const sim::Time now = scheduler_.now();
   if (broken_) return output_->line_condition(now, LineCondition::Dark, 0);

@@ -73,7 +73,8 @@ class TestFibre final : public LineListener {
   // A lazy hop through this fibre (line.hpp): taken as line_burst() takes it, handed back
   // for the sender to deliver. So the rings built of these fibres run the chips' lazy hops,
   // as ring::Ring does. A telegram to corrupt takes line_burst().
-  bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out) override {
+  bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out,
+                    chip::PassedBursts&) override {
     if (target_ == nullptr || corrupt_countdown_ > 0) return false;
     settled_.line_burst(burst);
     passed_ = LineBurst{burst.start + delay_, burst.bit_period, burst.bits};

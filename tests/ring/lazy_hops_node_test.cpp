@@ -60,23 +60,27 @@ void expect_same(const std::vector<std::string>& lazy, const std::vector<std::st
 
 // What happens to the node (register bits: datasheet register table, delta spec 2.3).
 enum class Action {
-  Rate8Mbit,       // 0x01 ENTSBAUD + SWBAUD: 8 Mbit/s (the waiting bursts at the old rate)
-  Rate4Mbit,       // 0x01 ENTSBAUD + SWBAUD16
-  Txd2OnThenJoin,  // 0x02 TXOE bit 1, then a listener on TxD2
-  JoinThenTxd2On,  // a listener on TxD2, then TXOE bit 1
-  Poltxd,          // 0x01 POLTXD flipped
-  TestMode,        // 0x02 TMODE2 | TMODE0: a test generator
-  SoftReset,       // 0x01 SWRST
-  MonitorLimits,   // 0x0D RDISTLIM / FIBBRTIM
-  ReponOff,        // 0x01 REPON off
-  OwnTelegram,     // the node sends one of its own
-  Disconnect,      // TxD1's fibre disconnected
-  Ledist,          // 0x02 LEDIST
-  Txd2PortMode,    // 0x0B PORTSEL: TxD2 as a port pin
-  TxlightOff,      // 0x02 TXLIGHT off
-  Txd1Off,         // 0x02 TXOE bit 0 off
+  Rate8Mbit,          // 0x01 ENTSBAUD + SWBAUD: 8 Mbit/s (the waiting bursts at the old rate)
+  Rate4Mbit,          // 0x01 ENTSBAUD + SWBAUD16
+  Txd2OnThenJoin,     // 0x02 TXOE bit 1, then a listener on TxD2
+  JoinThenTxd2On,     // a listener on TxD2, then TXOE bit 1
+  Poltxd,             // 0x01 POLTXD flipped
+  TestMode,           // 0x02 TMODE2 | TMODE0: a test generator
+  SoftReset,          // 0x01 SWRST
+  MonitorLimits,      // 0x0D RDISTLIM / FIBBRTIM
+  ReponOff,           // 0x01 REPON off
+  OwnTelegram,        // the node sends one of its own
+  Disconnect,         // TxD1's fibre disconnected
+  Ledist,             // 0x02 LEDIST
+  Txd2PortMode,       // 0x0B PORTSEL: TxD2 as a port pin
+  TxlightOff,         // 0x02 TXLIGHT off
+  Txd1Off,            // 0x02 TXOE bit 0 off
+  FibreBreak,         // TxD1's fibre broken (it holds the bursts passed through it)
+  FibreBreakRestore,  // broken, and restored 20 bits later
+  FibreMoved,         // TxD1's fibre connected to another receiver
+  FibreBitErrors,     // TxD1's fibre starts flipping bits
 };
-constexpr int kActions = 15;
+constexpr int kActions = 19;
 
 std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
   RepeatingChip node(lazy);
@@ -147,6 +151,19 @@ std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
         break;
       case Action::Txd1Off:
         flip(0x02, 0x0001);
+        break;
+      case Action::FibreBreak:
+        f.break_now();
+        break;
+      case Action::FibreBreakRestore:
+        f.break_now();
+        f.restore_at(s.now() + 20 * kBit);
+        break;
+      case Action::FibreMoved:
+        f.connect(out2);
+        break;
+      case Action::FibreBitErrors:
+        f.set_bit_error_rate(0.01, 7);
         break;
     }
     trace.push_back(std::to_string(s.now()) + " action");

@@ -51,6 +51,17 @@ struct LineBurst {
   sim::Time end() const { return start + duration(); }
 };
 
+// A sender of lazy hops (line.hpp pass_through): it keeps the bursts a listener took
+// without booking them, and books them there (LineListener::book_passed, in order) when the
+// listener asks (book_all), before the listener reads or changes what it holds.
+class PassedBursts {
+ public:
+  virtual void book_all() = 0;
+
+ protected:
+  ~PassedBursts() = default;
+};
+
 // Something that listens to a line (a chip's receiver, a fibre's input, a tracer).
 //
 // Announcements: a sender tells what it will put on the line as soon as it knows it, so a
@@ -77,11 +88,17 @@ class LineListener {
   // as line_burst() would and, instead of telling that one, hand it back: `next` and the
   // burst as it reaches `next`, for the caller to deliver at once (`out` points into the
   // listener, valid until it is told anything else: no copy of the bits per hop). False
-  // (the default): nothing was taken, call line_burst().
-  virtual bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out) {
-    (void)burst, (void)next, (void)out;
+  // (the default): nothing was taken, call line_burst(). Taken, the burst need not be
+  // booked yet: `sender` keeps it and books it by book_passed() when the listener asks
+  // (PassedBursts::book_all), or before it tells the listener anything else.
+  virtual bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out,
+                            PassedBursts& sender) {
+    (void)burst, (void)next, (void)out, (void)sender;
     return false;
   }
+  // A burst taken by pass_through before (its start as it was passed in), booked now as
+  // line_burst() would have booked it then, telling no one.
+  virtual void book_passed(const LineBurst& burst) { (void)burst; }
 };
 
 }  // namespace sercon::chip

@@ -7,6 +7,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_outputs.hpp"
+#include "sercon/chip/serial_unit_receiver.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
 
 namespace sercon::chip {
@@ -28,7 +29,7 @@ inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next
   if (last.since >= burst.start || (!last.is_burst && last.condition == LineCondition::Dark)) {
     return false;
   }
-  return only->pass_through(burst, next, out);
+  return only->pass_through(burst, next, out, unit_.receiver());
 }
 
 inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*& next,

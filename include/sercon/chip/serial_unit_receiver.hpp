@@ -31,7 +31,7 @@
 
 namespace sercon::chip {
 
-class SerialReceiver final : public LineListener, private LazyPin::Source {
+class SerialReceiver final : public LineListener, public PassedBursts, private LazyPin::Source {
  public:
   explicit SerialReceiver(SerialUnit& unit);
   ~SerialReceiver() override;
@@ -63,6 +63,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void absorb_lazy() {
     if (!lazy_.empty()) absorb_waiting();  // inline: asked before every change, mostly none
   }
+  // The fibre behind TxD books the bursts it passed on lazily (they go in with the rest).
+  void book_all() override { absorb_lazy(); }
   std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
   std::size_t lazy_bursts_waiting() const { return lazy_.size(); }  // not yet absorbed
 
@@ -283,6 +285,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   struct LazyBurst {
     LineBurst leaving;
     sim::Time arrived = 0;
+    sim::Time reaches = 0;  // the next receiver (the TxD listener books it only when absorbed)
     sim::Time leaves() const { return leaving.start; }
     sim::Time end_at_rxd() const { return arrived + leaving.duration(); }
   };

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sercon/chip/line.hpp"
@@ -60,7 +61,8 @@ class Fibre {
     void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
     void line_burst(const chip::LineBurst& burst) override;
     bool pass_through(const chip::LineBurst& burst, chip::LineListener*& next,
-                      const chip::LineBurst*& out) override;
+                      const chip::LineBurst*& out, chip::PassedBursts& sender) override;
+    void book_passed(const chip::LineBurst& burst) override;
 
    private:
     Fibre& fibre_;
@@ -81,6 +83,11 @@ class Fibre {
   inline Change& record_at(sim::Time start);
   [[gnu::noinline]] void drop_from(sim::Time start);
   void pass_on(const Change& change);
+  // The bursts passed through and not yet booked go into the history first (their sender
+  // books them): before the history is read or added to.
+  void book_passed() {
+    if (passed_from_ != nullptr) std::exchange(passed_from_, nullptr)->book_all();
+  }
   void tell_far_end();  // the far end's present condition, then what is still on its way
   sim::Scheduler& scheduler_;
   double length_m_;
@@ -92,6 +99,12 @@ class Fibre {
   // What went in and reaches (or reached) the far end, in time order: the change in force
   // there now and those still on their way (kept while broken, for a restore).
   sim::CircularQueue<Change> history_;
+  // Lazy hops: who holds the bursts passed through and not yet booked (null: none), the
+  // last one's start at the far end (booked, it is the last), and that burst as it was
+  // handed on (pass_through's `out`).
+  chip::PassedBursts* passed_from_ = nullptr;
+  sim::Time last_passed_ = 0;
+  chip::LineBurst passed_;
   std::vector<sim::Scheduler::EventId> switches_;  // break_at / restore_at
 };
 
