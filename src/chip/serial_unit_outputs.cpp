@@ -24,11 +24,11 @@ bool is_dark(const RxdSegment& s) { return !s.is_burst && s.condition == LineCon
 
 }  // namespace
 
-TxdOutputs::TxdOutputs(SerialUnit& unit) : unit_(unit) {
+TxdOutputs::TxdOutputs(SerialUnit& unit) : unit_(unit), scheduler_(unit.chip().scheduler()) {
   line_.push_back(RxdSegment::of(0, LineCondition::Dark, 0));
 }
 
-TxdOutputs::~TxdOutputs() { unit_.chip().scheduler().cancel(pins_event_); }
+TxdOutputs::~TxdOutputs() { scheduler_.cancel(pins_event_); }
 
 void TxdOutputs::pass_on(LineListener& listener, const RxdSegment& s) {
   if (s.is_burst) return listener.line_burst(s.burst());
@@ -41,7 +41,7 @@ void TxdOutputs::pass_on(LineListener& listener, const RxdSegment& s) {
 void TxdOutputs::tell_line(LineListener& listener) const {
   sim::Time period = 0;
   const LineCondition c = line_condition_now(&period);
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   std::vector<RxdSegment> later;
   for (std::size_t i = 0; i < line_.size(); ++i) {
     if (line_[i].since > now) later.push_back(line_[i]);
@@ -61,7 +61,7 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
   if (v.mode == Mode::Line) {
     tell_line(listener);
   } else {
-    listener.line_condition(unit_.chip().scheduler().now(), v.condition, v.period);
+    listener.line_condition(scheduler_.now(), v.condition, v.period);
   }
 }
 
@@ -82,7 +82,7 @@ void TxdOutputs::tell_left_dark(LineListener* left) {
   for (const Output& o : outputs_) {
     if (o.listener == left) return;
   }
-  left->line_condition(unit_.chip().scheduler().now(), LineCondition::Dark, 0);
+  left->line_condition(scheduler_.now(), LineCondition::Dark, 0);
 }
 
 void TxdOutputs::find_lone_follower() {
@@ -98,7 +98,7 @@ void TxdOutputs::find_lone_follower() {
 }
 
 const RxdSegment& TxdOutputs::line_now() const {
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   std::size_t i = line_.size() - 1;
   while (i > 0 && line_[i].since > now) --i;
   return line_[i];
@@ -111,7 +111,7 @@ LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
   return s.is_burst ? LineCondition::Idle : s.condition;
 }
 
-void TxdOutputs::prune() { drop_replaced_by(line_, unit_.chip().scheduler().now()); }
+void TxdOutputs::prune() { drop_replaced_by(line_, scheduler_.now()); }
 
 void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
   prune();
@@ -156,19 +156,12 @@ void TxdOutputs::absorb(const LineBurst& burst) {
   lone_follower_->book_passed(burst);  // it took the burst by pass_through
 }
 
-// The pins change only where the line goes dark or lights up; an announcement that does
-// neither (and drops nothing announced before) leaves the plan as it is.
-bool TxdOutputs::darkness_changes_at_back() const {
-  if (line_.size() < 2) return true;
-  return is_dark(line_.back()) != is_dark(line_[line_.size() - 2]);
-}
-
 bool TxdOutputs::dark_now() const { return is_dark(line_now()); }
 
 // The TxD pins show whether there is a signal (light level) or none (dark level): they
 // change only where the line goes dark or lights up, rarely, so an event there is cheap.
 void TxdOutputs::plan_pins() {
-  sim::Scheduler& s = unit_.chip().scheduler();
+  sim::Scheduler& s = scheduler_;
   s.cancel(pins_event_);
   pins_event_ = {};
   set_pins_following_line();
@@ -246,7 +239,7 @@ void TxdOutputs::show(unsigned pin, const View& v) {
     prune();
     tell_line(*out.listener);
   } else {
-    out.listener->line_condition(unit_.chip().scheduler().now(), v.condition, v.period);
+    out.listener->line_condition(scheduler_.now(), v.condition, v.period);
   }
 }
 

@@ -13,6 +13,7 @@ namespace sercon::chip {
 
 SerialRepeater::SerialRepeater(SerialUnit& unit)
     : unit_(unit),
+      scheduler_(unit.chip().scheduler()),
       sclk_period_(sim::period_of_hz(unit.chip().config().sclk_hz)),
       by_sclk_(static_cast<std::uint64_t>(sclk_period_)) {}
 
@@ -21,13 +22,13 @@ void SerialRepeater::reset() {
   repon_ = false;
   background_.clear();
   own_.clear();
-  unit_.outputs().line_condition(unit_.chip().scheduler().now(), LineCondition::Dark, 0);
+  unit_.outputs().line_condition(scheduler_.now(), LineCondition::Dark, 0);
 }
 
 void SerialRepeater::release() {
   unit_.receiver().absorb_lazy();
   repon_ = unit_.fields().repon.on(unit_.chip().regs());
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   background_.clear();
   if (repon_) {
     take_up_received();
@@ -41,7 +42,7 @@ void SerialRepeater::release() {
 // is not picked up: its rest would decode to nothing), and what RxD is told of for later
 // leaves after the repeater delay.
 void SerialRepeater::take_up_received() {
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   const std::vector<RxdSegment> received = unit_.receiver().input_from_now();
   const RxdSegment& current = received.front();
   background_.clear();
@@ -88,7 +89,7 @@ void SerialRepeater::own(const LineBurst& burst) {
 void SerialRepeater::refresh() {
   unit_.receiver().absorb_lazy();
   const bool on = unit_.fields().repon.on(unit_.chip().regs());
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   if (on != repon_) {
     repon_ = on;
     if (on) {
@@ -109,7 +110,7 @@ void SerialRepeater::refresh() {
 }
 
 void SerialRepeater::prune() {
-  const sim::Time now = unit_.chip().scheduler().now();
+  const sim::Time now = scheduler_.now();
   while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
   drop_replaced_by(background_, now);
 }

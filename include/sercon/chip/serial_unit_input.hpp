@@ -76,7 +76,12 @@ inline void append_burst(Line& line, const LineBurst& burst, sim::Time since) {
 // message) after the change announced last there, at `last`; every other way into the line
 // takes lazy bursts in first, so one at or before `last` is a missed trigger:
 // std::logic_error.
-void expect_absorbed_in_order(std::string_view line, sim::Time last, sim::Time at);
+[[noreturn, gnu::cold]] void absorbed_out_of_order(std::string_view line, sim::Time last,
+                                                   sim::Time at);
+inline void expect_absorbed_in_order(std::string_view line, sim::Time last, sim::Time at) {
+  if (last >= at) [[unlikely]]
+    absorbed_out_of_order(line, last, at);
+}
 
 // Edges in [since, t): Idle has one every 8 bit times, ZeroBits one every bit time, both
 // beginning with an edge at `since`; a burst has its bits' edges, then its trailing fill.

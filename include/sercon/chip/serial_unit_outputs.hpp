@@ -75,7 +75,16 @@ class TxdOutputs {
   void set_pins_following_line();
   void tell_line(LineListener& listener) const;  // the line now, then what is announced
   bool supersede(sim::Time at);                  // true when something announced was dropped
-  bool darkness_changes_at_back() const;
+  // The pins change only where the line goes dark or lights up; an announcement that does
+  // neither (and drops nothing announced before) leaves the plan as it is. Inline: at every
+  // burst.
+  bool darkness_changes_at_back() const {
+    if (line_.size() < 2) return true;
+    const auto dark = [](const RxdSegment& s) {
+      return !s.is_burst && s.condition == LineCondition::Dark;
+    };
+    return dark(line_.back()) != dark(line_[line_.size() - 2]);
+  }
   void prune();
   bool dark_now() const;
   const RxdSegment& line_now() const;
@@ -85,6 +94,7 @@ class TxdOutputs {
   void find_lone_follower();  // after a listener or a view changed
 
   SerialUnit& unit_;
+  sim::Scheduler& scheduler_;  // the chip's: asked for now at every burst
   std::array<Output, 6> outputs_{};
   LineListener* lone_follower_ = nullptr;  // the one listener following the line; none or two: null
   // The serial line as announced, in time order, the front in force now: conditions, and

@@ -38,7 +38,7 @@ inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*
   if (!repon_ || unit_.bit_period() == 0) return false;
   // What prune() would leave: no own telegram not yet over (they end in order), and the
   // background never pruned empty. Nothing is kept, so nothing needs pruning here.
-  if (!own_.empty() && own_.back().end() > unit_.chip().scheduler().now()) return false;
+  if (!own_.empty() && own_.back().end() > scheduler_.now()) return false;
   if (background_.empty() || background_.back().since >= leaves) return false;
   return unit_.outputs().pass_through(leaving, next, out);
 }

@@ -13,6 +13,7 @@
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/reciprocal.hpp"
+#include "sercon/sim/scheduler.hpp"
 #include "sercon/sim/time.hpp"
 
 namespace sercon::chip {
@@ -54,8 +55,9 @@ class SerialRepeater {
   void emit_background(sim::Time at, std::size_t index, bool joined);
 
   SerialUnit& unit_;
-  sim::Time sclk_period_;    // the grid a forwarded telegram leaves on (fixed by the config)
-  sim::Reciprocal by_sclk_;  // divides by sclk_period_: asked at every hop a telegram makes
+  sim::Scheduler& scheduler_;  // the chip's: asked for now at every burst
+  sim::Time sclk_period_;      // the grid a forwarded telegram leaves on (fixed by the config)
+  sim::Reciprocal by_sclk_;    // divides by sclk_period_: asked at every hop a telegram makes
   bool repon_ = false;
   // What leaves TxD when no own telegram is in the way, in time order, the front in force
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
