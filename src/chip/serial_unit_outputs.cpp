@@ -111,8 +111,6 @@ LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
   return s.is_burst ? LineCondition::Idle : s.condition;
 }
 
-void TxdOutputs::prune() { drop_replaced_by(line_, scheduler_.now()); }
-
 void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
   prune();
   const RxdSegment& last = line_.back();
@@ -135,18 +133,11 @@ void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time
   if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
-void TxdOutputs::line_burst(const LineBurst& burst) {
-  prune();
-  const bool dropped = drop_announced_from(line_, burst.start);
-  append_burst(line_, burst, burst.start);
-  if (lone_follower_ != nullptr) {  // the usual case: one fibre behind the node
-    lone_follower_->line_burst(burst);
-  } else {
-    for (Output& out : outputs_) {
-      if (out.view.mode == Mode::Line && out.listener) out.listener->line_burst(burst);
-    }
+// Not one listener following the line: each that does is told.
+void TxdOutputs::tell_followers(const LineBurst& burst) {
+  for (Output& out : outputs_) {
+    if (out.view.mode == Mode::Line && out.listener) out.listener->line_burst(burst);
   }
-  if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
 void TxdOutputs::absorb(const LineBurst& burst) {

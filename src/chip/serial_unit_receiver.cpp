@@ -7,6 +7,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
 #include "sercon/chip/serial_unit_monitor.hpp"
+#include "sercon/chip/serial_unit_pass_through.hpp"
 #include "sercon/chip/serial_unit_receiver_inline.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
 #include "sercon/sim/model_limit.hpp"

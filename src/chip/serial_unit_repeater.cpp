@@ -55,22 +55,6 @@ void SerialRepeater::take_up_received() {
   }
 }
 
-void SerialRepeater::input(const RxdSegment& segment) {
-  if (!repon_ || unit_.bit_period() == 0) return;
-  const sim::Time at = forward_time(segment.since);
-  // The later word wins (line.hpp).
-  drop_announced_from(background_, at);
-  prune();
-  RxdSegment& out = background_.emplace_back();
-  out = segment;
-  out.since = at;
-  if (own_.empty()) {  // nothing of its own in the way: straight on (the usual case)
-    if (out.is_burst) return unit_.outputs().line_burst(out.burst());
-    return unit_.outputs().line_condition(at, out.condition, out.period);
-  }
-  emit_from(at);
-}
-
 void SerialRepeater::absorb(const LineBurst& leaving) {
   const sim::Time leaves = leaving.start;
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
@@ -107,12 +91,6 @@ void SerialRepeater::refresh() {
   }
   prune();
   emit_from(now);
-}
-
-void SerialRepeater::prune() {
-  const sim::Time now = scheduler_.now();
-  while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
-  drop_replaced_by(background_, now);
 }
 
 // Background segment `index` from `at` on: as it is when it begins there, else joined

@@ -35,7 +35,7 @@ class TxdOutputs {
   // `at` / burst.start >= now; the later word wins (line.hpp). Announcing the condition the
   // line is in at `at` anyway, with nothing announced after it, is a no-op.
   void line_condition(sim::Time at, LineCondition condition, sim::Time period);
-  void line_burst(const LineBurst& burst);
+  inline void line_burst(const LineBurst& burst);  // serial_unit_pass_through.hpp
 
   // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
   // burst is announced after everything before it, the listener may take it and hand it on
@@ -85,7 +85,8 @@ class TxdOutputs {
     };
     return dark(line_.back()) != dark(line_[line_.size() - 2]);
   }
-  void prune();
+  void prune() { drop_replaced_by(line_, scheduler_.now()); }  // inline: at every burst
+  void tell_followers(const LineBurst& burst);
   bool dark_now() const;
   const RxdSegment& line_now() const;
   void plan_pins();  // an event where the line next goes dark or lights up

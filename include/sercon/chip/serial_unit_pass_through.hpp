@@ -1,7 +1,8 @@
-// The repeater's and TxD's stages of a lazy hop (docs/serial-and-ring.md, "Lazy hops"),
-// inline for the one caller, SerialReceiver::try_lazy_hop, and the repeater's forward time:
-// asked at every hop of a lazy chain (~32 000 a cycle with 254 slaves), where a call per
-// stage costs as much as its checks.
+// The repeater's and TxD's stages of a burst passing a node, inline: those of a lazy hop
+// (docs/serial-and-ring.md, "Lazy hops") for SerialReceiver::try_lazy_hop, the repeater's
+// forward time, and the repeater's input and TxD's line_burst for a burst the node reads
+// (SerialReceiver::pass_to_repeater). Asked at every hop (~32 000 a cycle with 254 slaves),
+// where a call per stage costs as much as its checks.
 #pragma once
 
 #include "sercon/chip/chip.hpp"
@@ -17,6 +18,34 @@ inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
   const sim::Time due = t + SerialUnit::kRepeaterDelayBits * unit_.bit_period();
   if (due <= 0) return (due + sclk - 1) / sclk * sclk;  // before time 0: not on a ring
   return static_cast<sim::Time>(by_sclk_.divide(static_cast<std::uint64_t>(due + sclk - 1))) * sclk;
+}
+
+inline void SerialRepeater::input(const RxdSegment& segment) {
+  if (!repon_ || unit_.bit_period() == 0) return;
+  const sim::Time at = forward_time(segment.since);
+  // The later word wins (line.hpp).
+  drop_announced_from(background_, at);
+  prune();
+  RxdSegment& out = background_.emplace_back();
+  out = segment;
+  out.since = at;
+  if (own_.empty()) {  // nothing of its own in the way: straight on (the usual case)
+    if (out.is_burst) return unit_.outputs().line_burst(out.burst());
+    return unit_.outputs().line_condition(at, out.condition, out.period);
+  }
+  emit_from(at);
+}
+
+inline void TxdOutputs::line_burst(const LineBurst& burst) {
+  prune();
+  const bool dropped = drop_announced_from(line_, burst.start);
+  append_burst(line_, burst, burst.start);
+  if (lone_follower_ != nullptr) {  // the usual case: one fibre behind the node
+    lone_follower_->line_burst(burst);
+  } else {
+    tell_followers(burst);
+  }
+  if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
 inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,

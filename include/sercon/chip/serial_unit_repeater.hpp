@@ -27,7 +27,7 @@ class SerialRepeater {
   void reset();
   void release();
   // RxD announced `segment` (segment.since >= now).
-  void input(const RxdSegment& segment);
+  inline void input(const RxdSegment& segment);  // serial_unit_pass_through.hpp
   // The transmitter announced an own telegram (burst.start >= now).
   void own(const LineBurst& burst);
   // REPON or the bit rate changed.
@@ -48,7 +48,11 @@ class SerialRepeater {
 
  private:
   void take_up_received();  // REPON on: the received line from now on
-  void prune();
+  void prune() {            // inline: at every burst
+    const sim::Time now = scheduler_.now();
+    while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
+    drop_replaced_by(background_, now);
+  }
   // Announces the line on TxD from `t` on: the received signal (or the own idle fill when
   // REPON = 0) with the own telegrams laid over it.
   void emit_from(sim::Time t);
