@@ -67,6 +67,19 @@ void SerialRepeater::own(const LineBurst& burst) {
   unit_.receiver().absorb_lazy();
   own_.push_back(burst);
   prune();
+  // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
+  // without its walk. The telegram; then, when nothing of the background begins after its
+  // start, the background segment in force where it ends (joined half-way unless it begins
+  // there); else emit_from() from its end, as emit_from(burst.start) goes on.
+  if (own_.size() == 1 && !background_.empty()) {
+    unit_.outputs().line_burst(burst);
+    const sim::Time end = burst.end();
+    if (own_.size() == 1 && background_.back().since <= burst.start) {
+      const std::size_t last = background_.size() - 1;
+      return emit_background(end, last, background_[last].since != end);
+    }
+    return emit_from(end);
+  }
   emit_from(burst.start);
 }
 

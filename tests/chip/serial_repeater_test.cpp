@@ -119,6 +119,25 @@ TEST(serial_Repeater, OwnTelegramIsInsertedAndWins) {
   EXPECT_EQ(b.txd1.bursts()[2].at, forwarded(own_end + 1000 * t, t));
 }
 
+// A telegram announced before the own one is sent, to leave after the own one ends, is not
+// in its way: it leaves whole, after the own telegram (the later word, the own one, drops
+// it from the line at first; what follows the own telegram brings it back).
+TEST(serial_Repeater, ATelegramAnnouncedToLeaveAfterTheOwnOneLeavesWhole) {
+  Repeating b;
+  const Time t = b.period();
+  const auto repeated = telegram_bits(0x31, kData);
+  b.unit.rxd().line_condition(0, LineCondition::Idle, t);
+  b.unit.rxd().line_burst(LineBurst{300 * t, t, repeated});
+  const Time own_end = b.unit.send(100 * t, 0x07, kData);
+  ASSERT_LT(own_end, forwarded(300 * t, t));
+  b.run_to(own_end + 1000 * t);
+  const auto out = b.txd1.bursts();
+  ASSERT_GE(out.size(), 2u);
+  EXPECT_EQ(out[out.size() - 2].at, 100 * t);
+  EXPECT_EQ(out.back().at, forwarded(300 * t, t));
+  EXPECT_EQ(out.back().bits.get(), repeated.get());
+}
+
 // An upstream break under the own telegram: once the own telegram is out, the line shows
 // what RxD carries (dark), so the break travels on.
 TEST(serial_Repeater, AfterTheOwnTelegramTheLineShowsTheReceivedCondition) {
