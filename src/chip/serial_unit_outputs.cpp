@@ -111,14 +111,8 @@ LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
   return s.is_burst ? LineCondition::Idle : s.condition;
 }
 
-void TxdOutputs::line_condition(sim::Time at, LineCondition condition, sim::Time period) {
+void TxdOutputs::change_condition(sim::Time at, LineCondition condition, sim::Time period) {
   prune();
-  const RxdSegment& last = line_.back();
-  if (last.since <= at) {
-    const bool in_burst = last.is_burst && at < last.burst_end();
-    const LineCondition c = last.is_burst ? LineCondition::Idle : last.condition;
-    if (!in_burst && c == condition && last.period == period) return;
-  }
   const bool dropped = drop_announced_from(line_, at);
   line_.push_back(RxdSegment::of(at, condition, period));
   if (lone_follower_ != nullptr) {

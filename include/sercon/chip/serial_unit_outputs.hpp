@@ -34,7 +34,17 @@ class TxdOutputs {
   // Announcements of the serial line (own telegrams, idle fill or the repeated signal) at
   // `at` / burst.start >= now; the later word wins (line.hpp). Announcing the condition the
   // line is in at `at` anyway, with nothing announced after it, is a no-op.
-  void line_condition(sim::Time at, LineCondition condition, sim::Time period);
+  void line_condition(sim::Time at, LineCondition condition, sim::Time period) {
+    // Inline: the idle fill after each own telegram is such a no-op. What prune() would
+    // drop goes at the next change (it never touches the last segment).
+    const RxdSegment& last = line_.back();
+    if (last.since <= at) {
+      const bool in_burst = last.is_burst && at < last.burst_end();
+      const LineCondition c = last.is_burst ? LineCondition::Idle : last.condition;
+      if (!in_burst && c == condition && last.period == period) return;
+    }
+    change_condition(at, condition, period);
+  }
   inline void line_burst(const LineBurst& burst);  // serial_unit_pass_through.hpp
 
   // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
@@ -56,6 +66,7 @@ class TxdOutputs {
   LineCondition line_condition_now(sim::Time* period) const;
 
  private:
+  void change_condition(sim::Time at, LineCondition condition, sim::Time period);
   void tell_left_dark(LineListener* left);  // a listener that left a pin (nullptr: none)
   enum class Mode : std::uint8_t { HighZ, Port, Dark, Light, ZeroBits, Line };
   struct View {  // what a listener is shown
