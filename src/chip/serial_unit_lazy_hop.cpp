@@ -71,10 +71,15 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
     if (last.segment.since >= b.start || !good(last.segment)) return false;
     if (last.segment.is_burst && b.start < last.cut) return false;
   }
-  // The burst as it leaves TxD, kept and handed to the stages. A copy first: `b` may live in
-  // the history of a fibre this hop books into (a node whose TxD comes back to its own
-  // RxD), which may move it; `b` is not read after the stages.
-  LazyBurst kept{LineBurst{leaves, b.bit_period, b.bits}, b.start};
+  // The burst as it leaves TxD, kept (built in its place, taken back if the stages refuse)
+  // and handed to the stages. A copy first: `b` may live in the history of a fibre this hop
+  // books into (a node whose TxD comes back to its own RxD), which may move it; `b` is not
+  // read after the stages.
+  LazyBurst& kept = lazy_.emplace_back();
+  kept.leaving.start = leaves;
+  kept.leaving.bit_period = b.bit_period;
+  kept.leaving.bits = b.bits;
+  kept.arrived = b.start;
   LineListener* next = nullptr;
   const LineBurst* out = nullptr;
   // After a lazy hop here nothing has changed the repeater or TxD (every way into them
@@ -83,9 +88,11 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   const bool passed =
       after_lazy ? unit_.outputs().lone_follower()->pass_through(kept.leaving, next, out, *this)
                  : repeater.pass_through(kept.leaving, next, out);
-  if (!passed) return false;
+  if (!passed) {
+    lazy_.pop_back();
+    return false;
+  }
   kept.reaches = out->start;
-  lazy_.push_back(std::move(kept));
   ++lazy_hops_taken_;
   prune_lazy(now);
   const sim::ScopedCount link(chain_depth);

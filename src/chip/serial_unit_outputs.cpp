@@ -134,13 +134,6 @@ void TxdOutputs::tell_followers(const LineBurst& burst) {
   }
 }
 
-void TxdOutputs::absorb(const LineBurst& burst) {
-  expect_absorbed_in_order("TxD", line_.back().since, burst.start);
-  prune();
-  append_burst(line_, burst, burst.start);
-  lone_follower_->book_passed(burst);  // it took the burst by pass_through
-}
-
 bool TxdOutputs::dark_now() const { return is_dark(line_now()); }
 
 // The TxD pins show whether there is a signal (light level) or none (dark level): they

@@ -55,14 +55,6 @@ void SerialRepeater::take_up_received() {
   }
 }
 
-void SerialRepeater::absorb(const LineBurst& leaving) {
-  const sim::Time leaves = leaving.start;
-  if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
-  prune();
-  append_burst(background_, leaving, leaves);
-  unit_.outputs().absorb(leaving);
-}
-
 void SerialRepeater::own(const LineBurst& burst) {
   unit_.receiver().absorb_lazy();
   own_.push_back(burst);

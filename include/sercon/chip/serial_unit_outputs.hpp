@@ -56,7 +56,7 @@ class TxdOutputs {
   // The one listener following the line (null: none, or two); set while bursts are lazy.
   LineListener* lone_follower() const { return lone_follower_; }
   // A burst passed through before: into the line as line_burst() would, no listener told.
-  void absorb(const LineBurst& burst);
+  inline void absorb(const LineBurst& burst);  // serial_unit_pass_through.hpp
 
   // Registers, test mode, polarity, clocks or reset state changed: re-derive every pin and
   // tell the listeners whose view changed.

@@ -1,8 +1,8 @@
 // The repeater's and TxD's stages of a burst passing a node, inline: those of a lazy hop
-// (docs/serial-and-ring.md, "Lazy hops") for SerialReceiver::try_lazy_hop, the repeater's
-// forward time, and the repeater's input and TxD's line_burst for a burst the node reads
-// (SerialReceiver::pass_to_repeater). Asked at every hop (~32 000 a cycle with 254 slaves),
-// where a call per stage costs as much as its checks.
+// (docs/serial-and-ring.md, "Lazy hops") for SerialReceiver::try_lazy_hop and their
+// absorbing later, the repeater's forward time, and the repeater's input and TxD's line_burst for a
+// burst the node reads (SerialReceiver::pass_to_repeater). Asked at every hop (~32 000 a cycle with
+// 254 slaves), where a call per stage costs as much as its checks.
 #pragma once
 
 #include "sercon/chip/chip.hpp"
@@ -46,6 +46,21 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
     tell_followers(burst);
   }
   if (dropped || darkness_changes_at_back()) plan_pins();
+}
+
+inline void SerialRepeater::absorb(const LineBurst& leaving) {
+  const sim::Time leaves = leaving.start;
+  if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
+  prune();
+  append_burst(background_, leaving, leaves);
+  unit_.outputs().absorb(leaving);
+}
+
+inline void TxdOutputs::absorb(const LineBurst& burst) {
+  expect_absorbed_in_order("TxD", line_.back().since, burst.start);
+  prune();
+  append_burst(line_, burst, burst.start);
+  lone_follower_->book_passed(burst);  // it took the burst by pass_through
 }
 
 inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,

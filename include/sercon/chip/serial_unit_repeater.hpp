@@ -40,7 +40,7 @@ class SerialRepeater {
   // `leaving` starts at forward_time(the start at RxD); `absorb` gets it again.
   // Inline (serial_unit_pass_through.hpp).
   inline bool pass_through(const LineBurst& leaving, LineListener*& next, const LineBurst*& out);
-  void absorb(const LineBurst& leaving);
+  inline void absorb(const LineBurst& leaving);  // serial_unit_pass_through.hpp
 
   // When something that reaches RxD at `t` leaves on TxD.
   inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp
