@@ -9,16 +9,13 @@ struct Pending {
   Signal* signal;
   Level level;
 };
-thread_local bool telling = false;
-thread_local bool any_pending = false;  // trivial: asked at every batch without the vector's
-                                        // thread-local initialisation check
 thread_local std::vector<Pending> pending;
 
 }  // namespace
 
 // A signal gone before its turn is skipped (left in place: the drain walks by index).
 Signal::~Signal() {
-  if (!any_pending) return;
+  if (!any_pending_) return;
   for (Pending& p : pending) {
     if (p.signal == this) p.signal = nullptr;
   }
@@ -33,7 +30,7 @@ void Signal::set(Level level) {
   batch([this, level] {
     if (watching_ != 0) {
       pending.push_back(Pending{this, level});
-      any_pending = true;
+      any_pending_ = true;
     }
     for (std::size_t i = 0; i < reactions_.size(); ++i) reactions_[i](level);
   });
@@ -41,17 +38,7 @@ void Signal::set(Level level) {
 
 void Signal::react(Watcher reaction) { reactions_.push_back(std::move(reaction)); }
 
-bool Signal::open_batch() {
-  if (telling) return false;
-  telling = true;
-  return true;
-}
-
-void Signal::close_batch() {
-  if (!any_pending) {  // the usual event: its pins changed nothing anyone watches
-    telling = false;
-    return;
-  }
+void Signal::tell_pending() {
   // Closed however it ends: a watcher that throws leaves nothing queued for the next change.
   struct Done {
     ~Done() { abandon_batch(); }
@@ -63,9 +50,9 @@ void Signal::close_batch() {
 }
 
 void Signal::abandon_batch() {
-  telling = false;
-  if (!any_pending) return;
-  any_pending = false;
+  telling_ = false;
+  if (!any_pending_) return;
+  any_pending_ = false;
   pending.clear();
 }
 

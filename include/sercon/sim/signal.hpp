@@ -73,8 +73,22 @@ class Signal {
   void on_watch(std::function<void()> hook) { on_watch_ = std::move(hook); }
 
  private:
-  static bool open_batch();     // true: this call opened it (nothing was being told)
-  static void close_batch();    // tells what is pending, in order, then closes
+  // Inline, with the two flags they test: every scheduler event opens and closes a batch,
+  // and nearly every one changes nothing anyone watches.
+  static bool open_batch() {  // true: this call opened it (nothing was being told)
+    if (telling_) return false;
+    telling_ = true;
+    return true;
+  }
+  // Tells what is pending, in order, then closes.
+  static void close_batch() {
+    if (!any_pending_) {  // the usual event: its pins changed nothing anyone watches
+      telling_ = false;
+      return;
+    }
+    tell_pending();
+  }
+  static void tell_pending();   // close_batch() with changes pending
   static void abandon_batch();  // an exception: nothing left pending, closed
   void tell(Level level);
   std::string name_;
@@ -85,6 +99,10 @@ class Signal {
   Provider provider_ = nullptr;
   const void* provider_context_ = nullptr;
   std::function<void()> on_watch_;
+  // One simulation runs on one thread. any_pending_: changes wait in the pending list
+  // (signal.cpp), asked without touching that vector.
+  static inline thread_local bool telling_ = false;
+  static inline thread_local bool any_pending_ = false;
 };
 
 template <typename F>
