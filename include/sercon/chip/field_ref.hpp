@@ -18,15 +18,15 @@ struct FieldRef {
 
   bool present() const { return mask != 0; }
   std::uint16_t get(const RegisterFile& regs) const {
-    return static_cast<std::uint16_t>((regs.value(address) & mask) >> lsb);
+    return static_cast<std::uint16_t>((regs.field_value(address) & mask) >> lsb);
   }
-  bool on(const RegisterFile& regs) const { return (regs.value(address) & mask) != 0; }
+  bool on(const RegisterFile& regs) const { return (regs.field_value(address) & mask) != 0; }
   // Chip-side writes (status bits, watchdog clearing ENTMT/PHAS0); no-ops when absent.
   void put(RegisterFile& regs, std::uint16_t value) const {
-    if (present()) regs.put(address, mask, static_cast<std::uint16_t>(value << lsb));
+    if (present()) regs.put_field(address, mask, static_cast<std::uint16_t>(value << lsb));
   }
   void set(RegisterFile& regs, bool on) const {
-    if (present()) regs.set_bits(address, mask, on);
+    if (present()) regs.set_field_bits(address, mask, on);
   }
 };
 

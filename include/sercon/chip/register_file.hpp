@@ -44,11 +44,22 @@ class RegisterFile {
   }
   // Replaces the bits under `mask` with `bits`.
   void put(std::uint8_t address, std::uint16_t mask, std::uint16_t bits) {
-    const std::uint16_t before = values_.at(address);
+    static_cast<void>(values_.at(address));  // the range check
+    put_field(address, mask, bits);
+  }
+  // value(), put() and set_bits() without the range check, for an address known to be a
+  // register's (a FieldRef's, resolved from the register table): units read and set fields
+  // a few hundred times a cycle.
+  std::uint16_t field_value(std::uint8_t address) const { return values_[address]; }
+  void put_field(std::uint8_t address, std::uint16_t mask, std::uint16_t bits) {
+    const std::uint16_t before = values_[address];
     const auto next = static_cast<std::uint16_t>((before & ~mask) | (bits & mask));
     if (next == before) return;
     values_[address] = next;
     changed(address);
+  }
+  void set_field_bits(std::uint8_t address, std::uint16_t mask, bool on) {
+    put_field(address, mask, on ? mask : 0);
   }
 
   // RW bits under `mask` ignore bus writes while locked (delta spec 2.6.2: ENTMT and PHAS0
