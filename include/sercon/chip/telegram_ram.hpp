@@ -64,8 +64,9 @@ class TelegramRam {
  private:
   // A run of `count` words from `first`: `part(n)` on its first n words, those inside the
   // RAM (all of them, the usual case, in one call), then a ListFault if some are beyond.
+  // Always inline: GCC made read_run's a call of its own, about 20 instructions a run more.
   template <class Part>
-  void in_ram(std::uint32_t first, std::size_t count, Part part) {
+  [[gnu::always_inline]] void in_ram(std::uint32_t first, std::size_t count, Part part) {
     if (first + count <= size_) return part(count);
     const std::size_t inside = first >= size_ ? 0 : std::min<std::size_t>(count, size_ - first);
     if (inside != 0) part(inside);
