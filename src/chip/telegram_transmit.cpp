@@ -12,9 +12,10 @@ void TransmitPath::clear_send_once(const ListItem& item, bool val) {
 }
 
 // The words are laid out as they go on the line: little-endian words are the telegram's
-// bytes in order (facts §2), so the containers are read straight into place.
-std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool val,
-                                                   ServiceChannelPort& port) {
+// bytes in order (facts §2), so the containers are read straight into place. Flattened: GCC
+// made each container's TelegramRam::read_run a call (an MDT has one container per drive).
+[[gnu::flatten]] std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool val,
+                                                                    ServiceChannelPort& port) {
   static_assert(std::endian::native == std::endian::little);
   const telegram::Storage storage = telegram::storage_of(item.word0);
   // With double buffering VAL names the buffer that goes out (datasheet 4.2.1).
