@@ -20,10 +20,10 @@ void TelegramList::stop() {
 
 void TelegramList::start(std::uint16_t list_pointer) {
   const State was = state_;
-  const ListItem waiting = item_;
   stop();
   items_read_ = 0;
   if (was == State::Receive) {
+    const ListItem waiting = item_;
     try {
       client_.receive_missed(waiting);
     } catch (const ListFault& f) {
@@ -47,14 +47,14 @@ void TelegramList::fault(const ListFault& f) {
 inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
   // Every item takes at least two words, so a walk reading more items than half the RAM
   // has looped.
-  if (++items_read_ > ram_.size() / 2u) throw ListFault("list loops (no end marker reached)");
+  if (++items_read_ > ram_.size() / 2u) throw_list_fault("list loops (no end marker reached)");
   item = ListItem{};
   item.address = address;
   item.word0 = ram_.read(address);
   item.kind = telegram::kind_of(item.word0);
   switch (item.kind) {
     case Kind::Invalid:
-      throw ListFault("list item of kind 10 (neither header nor end marker)");
+      throw_list_fault("list item of kind 10 (neither header nor end marker)");
     case Kind::EndMarker:
       item.time = ram_.read(address + telegram::kTimeWord);
       return;

@@ -73,7 +73,7 @@ sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
   if (storage.dma) dma_words_.clear();
   std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
   for (std::uint32_t n = 0;; ++n) {
-    if (n >= ram_.size()) throw ListFault("receive containers without LASTDC");
+    if (n >= ram_.size()) throw_list_fault("receive containers without LASTDC");
     std::array<std::uint16_t, telegram::kReceiveContainerWords> head{};  // control, POS
     ram_.read_run(control, head);
     // The control word's fields tested in place (a Container would be built in memory).

@@ -26,7 +26,7 @@ void TransmitPath::clear_send_once(const ListItem& item, bool val) {
   std::uint32_t control = item.address + telegram::kTransmitHeaderWords;
   // A container takes at least one word: more containers than RAM words is a loop.
   for (std::uint32_t n = 0;; ++n) {
-    if (n >= ram_.size()) throw ListFault("transmit containers without LASTDC");
+    if (n >= ram_.size()) throw_list_fault("transmit containers without LASTDC");
     // The control word's fields tested in place (a Container would be built in memory).
     const std::uint16_t control_word = ram_.read(control);
     const std::uint16_t len = telegram::container_len(control_word);

@@ -115,12 +115,17 @@ void Scheduler::refill() {
                     ? std::numeric_limits<Time>::max()
                     : earliest + (kHorizon - 1);
   near_.head = near_.tail = 0;
-  for (; far_.head != far_.tail && far_.buffer[far_.head].when <= near_limit_; ++far_.head) {
-    const Entry& entry = far_.buffer[far_.head];
-    if (slots_[entry.slot].generation != entry.generation) continue;
-    if (near_.tail == near_.buffer.size()) near_.make_room();
-    near_.buffer[near_.tail++] = entry;
+  // The entries up to the limit, then room for all of them at once: no check per entry.
+  std::size_t last = far_.head;
+  while (last != far_.tail && far_.buffer[last].when <= near_limit_) ++last;
+  if (near_.buffer.size() < last - far_.head) near_.buffer.resize(last - far_.head);
+  Entry* to = near_.buffer.data();
+  for (const Entry* from = far_.buffer.data() + far_.head; from != far_.buffer.data() + last;
+       ++from) {
+    if (slots_[from->slot].generation == from->generation) *to++ = *from;
   }
+  near_.tail = static_cast<std::size_t>(to - near_.buffer.data());
+  far_.head = last;
 }
 
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
