@@ -184,11 +184,14 @@ void Scheduler::run_callback(std::uint32_t index) {
 }
 
 // Each event is one batch of signal changes (signal.hpp): what its pins do is heard once
-// the event is done, so a watcher never sees a model half-way through an event.
+// the event is done, so a watcher never sees a model half-way through an event. One
+// Signal::Steps for the run: the batch is not opened and closed again at every event.
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
+  Signal::Steps steps;
   for (const Entry* next = front(); next != nullptr && next->when <= until; next = front()) {
-    Signal::batch([this, next] { run(*next); });
+    run(*next);
+    steps.done();
   }
   now_ = until;
 }

@@ -56,6 +56,28 @@ class Signal {
   // outputs half-way through it. Nested inside a change or another batch, it is part of it.
   template <typename F>
   static decltype(auto) batch(F&& f);
+  // batch() for each of a run of steps (Scheduler::run_until: one per event), the batch
+  // kept open from one step to the next: after each step, done() tells what it changed,
+  // as the end of its own batch would. Nested inside a change or another batch, the steps
+  // are part of it. An exception drops what is pending, as batch() does.
+  class Steps {
+   public:
+    Steps() : outer_(open_batch()) {}
+    ~Steps() {
+      if (outer_) abandon_batch();
+    }
+    Steps(const Steps&) = delete;
+    Steps& operator=(const Steps&) = delete;
+    void done() {
+      if (outer_ && any_pending_) {
+        tell_pending();   // closes the batch
+        telling_ = true;  // and the next step's opens
+      }
+    }
+
+   private:
+    bool outer_;
+  };
 
   // Returns a handle for unwatch(). The on_watch hook runs first (the new watcher does not
   // hear the model bringing the level up to date).
