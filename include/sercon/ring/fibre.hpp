@@ -29,7 +29,10 @@ class Fibre {
   Fibre(const Fibre&) = delete;
   Fibre& operator=(const Fibre&) = delete;
 
-  // Where the transmitter (a chip's TxD, SerialUnit::connect_txd) delivers.
+  // Where the transmitter (a chip's TxD, SerialUnit::connect_txd) delivers. The chip must
+  // outlive the connection (or disconnect_txd first), as the receiver at the far end must:
+  // bursts it passes on lazily are booked in this fibre's history from the chip when the
+  // fibre asks (docs/serial-and-ring.md, "Lazy hops"). Ring and the C API free fibres first.
   chip::LineListener& input() { return input_; }
   // The receiver at the far end (a chip's rxd()); it is told the far end's present
   // condition at once. It must outlive the connection (or be disconnected first). The
