@@ -44,7 +44,7 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
     if (!may_want(f)) continue;
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
-    if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+    if (wants_start(start, f.address) || wants_telegram(start, f)) {
       return true;
     }
   }
@@ -150,7 +150,7 @@ bool SerialReceiver::lazy_report_due(sim::Time now) const {
     for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
       if (!may_want(f)) continue;
       const sim::Time start = lazy.arrived + static_cast<sim::Time>(f.start_bit) * b.bit_period;
-      if (interest_->wants_start(start, f.address) || interest_->wants_telegram(start, f)) {
+      if (wants_start(start, f.address) || wants_telegram(start, f)) {
         return true;
       }
     }

@@ -58,7 +58,16 @@ void SerialReceiver::on_telegram(SerialUnit::TelegramHandler handler) {
 
 void SerialReceiver::set_interest(const ReceiveInterest* interest) {
   interest_ = interest;
+  wants_ = interest != nullptr ? interest->published() : nullptr;
   plan_reports();
+}
+
+bool SerialReceiver::ask_start(sim::Time start, std::uint8_t address) const {
+  return interest_ == nullptr || interest_->wants_start(start, address);
+}
+
+bool SerialReceiver::ask_telegram(sim::Time start, const wire::DecodedFrame& frame) const {
+  return interest_ == nullptr || interest_->wants_telegram(start, frame);
 }
 
 // --- the timeline -------------------------------------------------------------------------
@@ -284,18 +293,14 @@ bool SerialReceiver::candidate(Entry& e, FrameState& st, std::size_t i, bool tel
     if (!st.reports_known) work_out_reports(e, i);
     return telegram ? st.telegram_report : st.start_report;
   };
-  if (interest_ != nullptr) {
-    const wire::DecodedFrame& f = e.decode->frames[i];
-    const bool wanted = telegram ? interest_->wants_telegram(st.start, f)
-                                 : interest_->wants_start(st.start, f.address);
-    if (!wanted) {
-      // Dropped for good once its time has passed, so later plans do not ask again (the
-      // time is only worked out for a frame already over, and not at all when it ended
-      // longer ago than any report lags: a start report without a whole address, which
-      // never comes, is dropped then too).
-      if (st.end < now && (surely_over(e, st, now) || report_time() < now)) done = true;
-      return false;
-    }
+  const wire::DecodedFrame& f = e.decode->frames[i];
+  if (!(telegram ? wants_telegram(st.start, f) : wants_start(st.start, f.address))) {
+    // Dropped for good once its time has passed, so later plans do not ask again (the
+    // time is only worked out for a frame already over, and not at all when it ended
+    // longer ago than any report lags: a start report without a whole address, which
+    // never comes, is dropped then too).
+    if (st.end < now && (surely_over(e, st, now) || report_time() < now)) done = true;
+    return false;
   }
   const sim::Time t = report_time();
   if (t < now || t == kNever) {
@@ -427,10 +432,7 @@ inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
   if (e == nullptr || !e->decode || fired.frame >= e->frames.size()) return false;
   FrameState& st = e->frames[fired.frame];
   if (st.end_done) return false;
-  if (interest_ != nullptr &&
-      !interest_->wants_telegram(st.start, e->decode->frames[fired.frame])) {
-    return false;
-  }
+  if (!wants_telegram(st.start, e->decode->frames[fired.frame])) return false;
   const sim::Time t = with_reports(*e, fired.frame).telegram_report;
   if (t < scheduler_.now() || t == kNever || report_event_.value != 0) return false;
   report_ = Report{t, fired.serial, fired.frame, true};

@@ -6,6 +6,10 @@ namespace sercon::chip {
 
 using telegram::Kind;
 
+namespace {
+constexpr HeaderWait kAnyTime{};  // a header without TCHK: its window is all time
+}  // namespace
+
 TelegramList::TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& client)
     : time_base_(time_base), scheduler_(time_base.scheduler()), ram_(ram), client_(client) {}
 
@@ -15,7 +19,7 @@ TelegramList::~TelegramList() { scheduler_.cancel(window_judge_); }
 
 void TelegramList::stop() {
   cancel_event();
-  state_ = State::Idle;
+  set_state(State::Idle);
 }
 
 void TelegramList::start(std::uint16_t list_pointer) {
@@ -78,7 +82,7 @@ void TelegramList::walk(std::uint16_t address) {
     read_item(address, item_);
     // A receive header without TCHK just waits: no call (half the items a ring's lists hold).
     if (item_.kind == Kind::Receive && !item_.has(telegram::kTchk)) {
-      state_ = State::Receive;
+      wait_for(item_, kAnyTime.opens, kAnyTime.closes);
       return;
     }
     if (arm(item_) || item_.kind == Kind::EndMarker) return;
@@ -95,13 +99,13 @@ bool TelegramList::arm(const ListItem& item) {
   switch (item.kind) {
     case Kind::Transmit:
       event_ = time_base_.at_cycle_time(item.time, &TelegramList::transmit_time, this);
-      state_ = event_ != 0 ? State::Transmit : State::Idle;
+      set_state(event_ != 0 ? State::Transmit : State::Idle);
       return event_ != 0;  // late: not sent in this cycle
     case Kind::Receive:
       return arm_receive(item);
     case Kind::EndMarker:
       event_ = time_base_.at_cycle_time(item.time, &TelegramList::end_time, this);
-      state_ = event_ != 0 ? State::End : State::Idle;
+      set_state(event_ != 0 ? State::End : State::Idle);
       if (event_ == 0) client_.end_reached(item);
       return event_ != 0;
     case Kind::Invalid:
@@ -111,24 +115,24 @@ bool TelegramList::arm(const ListItem& item) {
 }
 
 bool TelegramList::arm_receive(const ListItem& item) {
-  state_ = State::Receive;
-  if (!item.has(telegram::kTchk)) return true;
+  if (!item.has(telegram::kTchk)) {
+    wait_for(item, kAnyTime.opens, kAnyTime.closes);
+    return true;
+  }
   const auto opens = time_base_.time_of_cycle_time(item.time - kWindowUs);
   const auto closes = time_base_.time_of_cycle_time(item.time + kWindowUs);
   if (!closes) {  // the window is over already
-    state_ = State::Idle;
+    set_state(State::Idle);
     client_.receive_missed(item);
     return false;
   }
   // Armed after the step out of TRT - 2 (behind a later transmit header, say): the window
   // still opened at that step, not when the header was read (doc §5).
-  if (opens) {
-    window_opens_ = *opens;
-  } else {
-    window_opens_ = time_base_.time_of_past_cycle_time(item.time - kWindowUs)
-                        .value_or(std::numeric_limits<sim::Time>::min());
-  }
-  window_closes_ = *closes;
+  wait_for(item,
+           opens ? *opens
+                 : time_base_.time_of_past_cycle_time(item.time - kWindowUs)
+                       .value_or(std::numeric_limits<sim::Time>::min()),
+           *closes);
   window_judge_ = scheduler_.at(*closes + client_.start_report_delay(), [this] {
     window_judge_ = {};
     close_window();
@@ -142,7 +146,7 @@ void TelegramList::end_time(void* list) { static_cast<TelegramList*>(list)->fire
 
 void TelegramList::fire_transmit() {
   event_ = 0;
-  state_ = State::Idle;
+  set_state(State::Idle);
   const ListItem item = item_;
   try {
     client_.transmit_due(item);
@@ -156,7 +160,7 @@ void TelegramList::fire_transmit() {
 }
 
 void TelegramList::close_window() {
-  state_ = State::Idle;
+  set_state(State::Idle);
   const ListItem item = item_;
   try {
     client_.receive_missed(item);
@@ -170,7 +174,7 @@ void TelegramList::close_window() {
 // No list_moved(): offer() answers NotExpected before (end marker armed) and after.
 void TelegramList::fire_end() {
   event_ = 0;
-  state_ = State::Idle;
+  set_state(State::Idle);
   client_.end_reached(item_);
 }
 
@@ -183,10 +187,10 @@ TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, L
   // address-255 telegram may still prove to be an MST, which serves no header (§3).
   constexpr std::uint8_t kAddress255 = 0xFF;
   if (address == kAddress255) {
-    state_ = State::Held;
+    set_state(State::Held);
     return Match::Accepted;
   }
-  state_ = State::Idle;
+  set_state(State::Idle);
   try {
     walk(item.next);
   } catch (const ListFault& f) {
@@ -197,7 +201,7 @@ TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, L
 
 void TelegramList::taken(const ListItem& item) {
   if (state_ != State::Held || item_.address != item.address) return;
-  state_ = State::Idle;
+  set_state(State::Idle);
   try {
     walk(item.next);
   } catch (const ListFault& f) {

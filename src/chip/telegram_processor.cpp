@@ -8,15 +8,10 @@ namespace {
 using telegram::kCycl;
 using telegram::kEn;
 
-constexpr std::uint8_t kMstAddress = 0xFF;
+constexpr std::uint8_t kMstAddress = ReceiveWants::kAddress255;
+constexpr sim::Time kNone = ReceiveWants::kNone;
 
-// An MST is address 255 with one data byte (sercos-facts §2); one with a bad FCS is still
-// an MST (a broken one), never a list telegram.
-bool is_mst(const wire::DecodedFrame& frame) {
-  const bool whole =
-      frame.error == wire::FrameError::None || frame.error == wire::FrameError::BadFcs;
-  return frame.address == kMstAddress && whole && frame.data.size() == 1;
-}
+bool is_mst(const wire::DecodedFrame& frame) { return ReceiveWants::is_mst(frame); }
 
 }  // namespace
 
@@ -46,6 +41,8 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   serial_.on_telegram_start(
       [this](sim::Time start, std::uint8_t address) { on_telegram_start(start, address); });
   serial_.on_telegram([this](const ReceivedTelegram& telegram) { on_telegram(telegram); });
+  wants_.header = &list_.wait();
+  wants_.other_address_counts = chip.variant() == Variant::Sercon410B;
   serial_.set_interest(this);
 }
 
@@ -58,8 +55,8 @@ TelegramProcessor::~TelegramProcessor() {
 void TelegramProcessor::reset(ResetCause) {
   list_.stop();
   mst_.stop();
-  receiving_.reset();
-  flag_clear_start_.reset();
+  stop_receiving();
+  wants_.flag_clear = kNone;
   scheduler_.cancel(tend_event_);
   scheduler_.cancel(rscend_event_);
   tend_event_ = {};
@@ -120,7 +117,7 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
     // which is no MDT: it is judged at its detection.
     if (address_flag_phase() && chip_.variant() == Variant::Sercon410B) {
       if (address == kMstAddress) {
-        flag_clear_start_ = start;
+        wants_.flag_clear = start;
       } else {
         flmdtadr_.set(regs_, false);
       }
@@ -138,19 +135,20 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
     // Frames do not overlap and a detection comes before the next frame's start report,
     // so this is a guard, not a path the ring takes.
     if (receiving_) receive_missed(receiving_->item);
-    receiving_ = Receiving{item, start, false, flag_set};
+    receiving_ = Receiving{item, false, flag_set};
+    wants_.receiving = start;
     receiving_->val_cleared = receive_.begin(item);
   } catch (const ListFault& f) {
-    receiving_.reset();
+    stop_receiving();
     list_fault(f);
   }
 }
 
 void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   const wire::DecodedFrame& frame = telegram.frame;
-  const bool current = receiving_ && receiving_->start == telegram.start;
-  if (flag_clear_start_ && *flag_clear_start_ == telegram.start) {
-    flag_clear_start_.reset();
+  const bool current = receiving_ && wants_.receiving == telegram.start;
+  if (wants_.flag_clear == telegram.start) {
+    wants_.flag_clear = kNone;
     if (!is_mst(frame)) flmdtadr_.set(regs_, false);  // an MDT to all drives: another address
   }
   if (is_mst(frame)) {
@@ -168,7 +166,7 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
 
 void TelegramProcessor::withdraw_mst() {
   const Receiving r = *receiving_;
-  receiving_.reset();
+  stop_receiving();
   // Delta spec 2.9: only an MDT with the drive's address requests an AT; an MST taken by a
   // header for address 255 does not.
   if (r.flag_set) flmdtadr_.set(regs_, false);
@@ -194,7 +192,7 @@ void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time recogn
 
 void TelegramProcessor::finish_receive(const wire::DecodedFrame& frame) {
   const ListItem item = receiving_->item;
-  receiving_.reset();
+  stop_receiving();
   ReceivePath::Outcome outcome;
   try {
     outcome = receive_.finish(item, frame, port());
@@ -282,31 +280,20 @@ void TelegramProcessor::list_moved() { serial_.interest_changed(); }
 // can change by register writes the receiver does not hear of, so every 410B offer of
 // another address counts).
 bool TelegramProcessor::wants_start(sim::Time start, std::uint8_t address) const {
-  switch (list_.would_take(start, address)) {
-    case TelegramList::Match::Accepted:
-      return true;
-    case TelegramList::Match::OtherAddress:
-      return chip_.variant() == Variant::Sercon410B;
-    case TelegramList::Match::NotExpected:
-      break;
-  }
-  return false;
+  return wants_.wants_start(start, address);
 }
 
 // What on_telegram would do: an MST always counts; any other telegram only when it is the
 // one being received, or (410B) the address-255 telegram whose detection clears FLMDTADR.
 bool TelegramProcessor::wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const {
-  return is_mst(frame) || (receiving_ && receiving_->start == start) ||
-         (flag_clear_start_ && *flag_clear_start_ == start);
+  return wants_.wants_telegram(start, frame);
 }
 
 // Only a waiting receive header (offer(), wants_start) or a telegram being received
 // (wants_telegram) makes a telegram other than an MST count; every change of either comes
 // with interest_changed() or inside a report's handler. A pending 410B FLMDTADR clear
-// (flag_clear_start_) is only ever for an address-255 telegram, which is asked for anyway.
-bool TelegramProcessor::may_want_addressed() const {
-  return list_.waits_for_telegram() || receiving_.has_value();
-}
+// (wants_.flag_clear) is only ever for an address-255 telegram, which is asked for anyway.
+bool TelegramProcessor::may_want_addressed() const { return wants_.may_want_addressed(); }
 
 // The address byte is in after the opening flag and the address with at most one stuffed
 // bit (17 bits); the receiver reports it 5.5 bits + 3..4 MCLK later (docs/serial-and-ring.md).

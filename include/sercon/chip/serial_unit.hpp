@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 
@@ -48,6 +49,50 @@ struct ReceivedTelegram {
   const wire::DecodedFrame& frame;
 };
 
+// A receive header's wait, as the telegram list keeps it (the list's own state, read by the
+// receiver as data): while `waits`, a telegram whose opening flag begins in [opens, closes)
+// is the header's if `achk` is off or it brings `address`.
+struct HeaderWait {
+  bool waits = false;
+  bool achk = false;
+  std::uint8_t address = 0;
+  sim::Time opens = std::numeric_limits<sim::Time>::min();
+  sim::Time closes = std::numeric_limits<sim::Time>::max();
+  bool in_window(sim::Time start) const { return start >= opens && start < closes; }
+};
+
+// What the telegram processor acts on, published as data that it keeps current at every
+// change (ReceiveInterest::published): the receiver compares a frame with it without a call.
+struct ReceiveWants {
+  static constexpr sim::Time kNone = std::numeric_limits<sim::Time>::min();
+  static constexpr std::uint8_t kAddress255 = 0xFF;
+  // An MST is address 255 with one data byte (sercos-facts §2); one with a bad FCS is still
+  // an MST (a broken one), never a list telegram.
+  static bool is_mst(const wire::DecodedFrame& frame) {
+    const bool whole =
+        frame.error == wire::FrameError::None || frame.error == wire::FrameError::BadFcs;
+    return frame.address == kAddress255 && whole && frame.data.size() == 1;
+  }
+
+  const HeaderWait* header = nullptr;  // the list's
+  bool other_address_counts = false;   // a telegram of another address in the window counts
+  sim::Time receiving = kNone;         // start of the telegram being received
+  sim::Time flag_clear = kNone;        // start of a telegram whose detection clears a flag
+
+  // Start report: the waiting header's telegram (or, if they count, another address in its
+  // window).
+  bool wants_start(sim::Time start, std::uint8_t address) const {
+    if (!header->waits || !header->in_window(start)) return false;
+    return !header->achk || address == header->address || other_address_counts;
+  }
+  // Detection: every MST, the telegram being received, the one that clears a flag.
+  bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const {
+    return start == receiving || start == flag_clear || is_mst(frame);
+  }
+  // False: both answers are false for every telegram whose address is not 255.
+  bool may_want_addressed() const { return header->waits || receiving != kNone; }
+};
+
 // What the telegram processor would act on in its present state. The receiver spends an
 // event only on reports it wants; the processor calls SerialUnit::interest_changed()
 // whenever its answers may change (its list walk moved on, a telegram was accepted, reset).
@@ -64,6 +109,9 @@ class ReceiveInterest {
   // start, until the processor calls interest_changed() or is handed a report. Lets the
   // receiver pass such telegrams on without asking (a lazy hop asks at every node).
   virtual bool may_want_addressed() const { return true; }
+  // The same answers as data, kept current by the processor at every change (the receiver
+  // then makes no call); nullptr: ask the functions above.
+  virtual const ReceiveWants* published() const { return nullptr; }
 };
 
 class SerialUnit : public ChipUnit {

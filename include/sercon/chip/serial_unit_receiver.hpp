@@ -195,8 +195,21 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
     return addressed_wanted_ || frame.address == kAddress255;
   }
   void refresh_interest() {
-    addressed_wanted_ = interest_ == nullptr || interest_->may_want_addressed();
+    addressed_wanted_ =
+        interest_ == nullptr ||
+        (wants_ != nullptr ? wants_->may_want_addressed() : interest_->may_want_addressed());
   }
+  // The processor's answers: from its published data when it has some, without a call
+  // (the usual case, so the rest is out of line).
+  bool wants_start(sim::Time start, std::uint8_t address) const {
+    return wants_ != nullptr ? wants_->wants_start(start, address) : ask_start(start, address);
+  }
+  bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const {
+    return wants_ != nullptr ? wants_->wants_telegram(start, frame) : ask_telegram(start, frame);
+  }
+  // true without an interest
+  [[gnu::noinline]] bool ask_start(sim::Time start, std::uint8_t address) const;
+  [[gnu::noinline]] bool ask_telegram(sim::Time start, const wire::DecodedFrame& frame) const;
   void absorb_waiting();
   inline void prune_lazy(sim::Time now);
   inline void drop_lazy_over(sim::Time now);
@@ -271,6 +284,7 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   SerialUnit::TelegramStartHandler on_start_;
   SerialUnit::TelegramHandler on_telegram_;
   const ReceiveInterest* interest_ = nullptr;
+  const ReceiveWants* wants_ = nullptr;              // interest_->published(), read at every ask
   static constexpr std::uint8_t kAddress255 = 0xFF;  // MSTs and telegrams to all drives
   // interest_->may_want_addressed(), asked again at every plan and after every report.
   bool addressed_wanted_ = true;

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/telegram_header.hpp"
 #include "sercon/chip/telegram_ram.hpp"
 #include "sercon/chip/time_base.hpp"
@@ -85,15 +86,15 @@ class TelegramList {
   // What offer() would answer now, without taking the telegram. Inline: the receiver asks
   // at every telegram start.
   Match would_take(sim::Time start, std::uint8_t address) const {
-    if (state_ != State::Receive) return Match::NotExpected;
-    if (item_.has(telegram::kTchk) && (start < window_opens_ || start >= window_closes_)) {
-      return Match::NotExpected;
-    }
-    if (item_.has(telegram::kAchk) && address != item_.adr()) return Match::OtherAddress;
+    if (!wait_.waits || !wait_.in_window(start)) return Match::NotExpected;
+    if (wait_.achk && address != wait_.address) return Match::OtherAddress;
     return Match::Accepted;
   }
   // A receive header waits: only then can offer() answer anything but NotExpected.
-  bool waits_for_telegram() const { return state_ == State::Receive; }
+  bool waits_for_telegram() const { return wait_.waits; }
+  // What would_take() compares with, kept current at every step of the walk (the receiver
+  // reads it as data: ReceiveWants).
+  const HeaderWait& wait() const { return wait_; }
   // An accepted telegram proved to be no list telegram (an MST): `item` waits again, as if
   // it had not been offered (its window may have closed meanwhile: then it is missed). If a
   // new cycle started since the offer, `item`'s cycle is over: it is missed, and the new
@@ -126,6 +127,16 @@ class TelegramList {
     window_judge_ = {};
   }
   void fault(const ListFault& fault);
+  // Every change of state_ goes through these, so wait_ follows it.
+  void set_state(State state) {
+    state_ = state;
+    wait_.waits = false;
+  }
+  // A receive header (item_) waits for a telegram beginning in [opens, closes).
+  void wait_for(const ListItem& item, sim::Time opens, sim::Time closes) {
+    state_ = State::Receive;
+    wait_ = HeaderWait{true, item.has(telegram::kAchk), item.adr(), opens, closes};
+  }
 
   TimeBase& time_base_;
   sim::Scheduler& scheduler_;  // outlives the time base when units are destroyed
@@ -135,8 +146,7 @@ class TelegramList {
   ListItem item_;
   TimeBase::CycleEvent event_ = 0;          // transmit or end marker due
   sim::Scheduler::EventId window_judge_{};  // a TCHK header's window is over
-  sim::Time window_opens_ = std::numeric_limits<sim::Time>::min();
-  sim::Time window_closes_ = 0;
+  HeaderWait wait_;               // state_ == Receive, and the header's window and address
   std::uint32_t items_read_ = 0;  // since the cycle start: more than RAM / 2 is a loop
 };
 

@@ -48,9 +48,9 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   std::uint64_t transmissions_skipped() const { return skipped_; }
 
  private:
+  // The telegram being received; its start is wants_.receiving.
   struct Receiving {
     ListItem item;
-    sim::Time start = 0;
     bool val_cleared = false;  // begin() cleared VAL (undone if it proves to be an MST)
     // The offer set FLMDTADR, which was 0 before: put back if it proves to be an MST (the
     // header waits as if it had not been offered).
@@ -68,6 +68,10 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   // asked at every telegram start and list transmission.
   bool address_flag_phase() const { return !master() && phase() <= 2; }
   ServiceChannelPort& port() { return *port_; }
+  void stop_receiving() {
+    receiving_.reset();
+    wants_.receiving = ReceiveWants::kNone;
+  }
 
   void on_cycle_start(const CycleStart& start);
   void on_send_mst();
@@ -96,6 +100,7 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   bool wants_start(sim::Time start, std::uint8_t address) const override;
   bool wants_telegram(sim::Time start, const wire::DecodedFrame& frame) const override;
   bool may_want_addressed() const override;
+  const ReceiveWants* published() const override { return &wants_; }
 
   Chip& chip_;
   RegisterFile& regs_;
@@ -114,9 +119,11 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   PassThroughServiceChannel pass_through_;
   ServiceChannelPort* port_ = &pass_through_;
   std::optional<Receiving> receiving_;
-  // 410B: the start of an address-255 telegram that came while an ACHK = 1 header for
-  // another address waited; FLMDTADR is cleared at its detection unless it is an MST.
-  std::optional<sim::Time> flag_clear_start_;
+  // What the receiver compares frames with: the list's wait, the start of the telegram
+  // being received (receiving_), and (flag_clear) 410B: the start of an address-255 telegram
+  // that came while an ACHK = 1 header for another address waited; FLMDTADR is cleared at
+  // its detection unless it is an MST.
+  ReceiveWants wants_;
   sim::Scheduler::EventId tend_event_{};
   sim::Scheduler::EventId rscend_event_{};
   sim::Time rscend_at_ = 0;
