@@ -39,8 +39,7 @@ void SerialReceiver::set_lazy_hops(bool on) {
 // good, which a later handler would see: that is left to the full path. Inline: asked at
 // every hop.
 inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
-  if (!on_start_ && !on_telegram_) return false;
-  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
+  if (hop_check_ != HopCheck::Frames) return hop_check_ == HopCheck::Always;
   for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
     if (!may_want(f)) continue;
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
@@ -142,7 +141,7 @@ void SerialReceiver::absorb_waiting() {
 // need not book each telegram it passes on. With one handler only, the full path marks
 // the other kind done for good: that is left to it.
 bool SerialReceiver::lazy_report_due(sim::Time now) const {
-  if (!on_start_ || !on_telegram_ || interest_ == nullptr) return true;
+  if (hop_check_ != HopCheck::Frames) return true;
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.leaving;

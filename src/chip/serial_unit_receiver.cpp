@@ -48,17 +48,20 @@ SerialReceiver::~SerialReceiver() {
 
 void SerialReceiver::on_start(SerialUnit::TelegramStartHandler handler) {
   on_start_ = std::move(handler);
+  refresh_hop_check();
   plan_reports();
 }
 
 void SerialReceiver::on_telegram(SerialUnit::TelegramHandler handler) {
   on_telegram_ = std::move(handler);
+  refresh_hop_check();
   plan_reports();
 }
 
 void SerialReceiver::set_interest(const ReceiveInterest* interest) {
   interest_ = interest;
   wants_ = interest != nullptr ? interest->published() : nullptr;
+  refresh_hop_check();
   plan_reports();
 }
 

@@ -86,26 +86,28 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
     bool reports_known;         // start_report and telegram_report are worked out
     bool start_done, end_done;
   };
-  // Frame states without an allocation for the usual burst of one or two frames: in inline_
-  // up to kInline of them, else all in more_ (contiguous either way, for the plans' walk).
+  // Frame states without an allocation for the usual burst of one frame: in inline_ when
+  // there is one, else all in more_ (contiguous either way, for the plans' walk). Small, as
+  // the entry it is part of: the timeline moves its entries when the front one goes.
   // Only the first size() are ever read or copied: a new entry (every hop a node reads)
   // writes none of its inline states, where value-initialising them cleared the whole entry.
   class FrameStates {
    public:
     FrameStates() noexcept {}  // user-provided: an entry's value-initialisation leaves inline_
-    FrameStates(const FrameStates& other) : more_(other.more_), size_(other.size_) {
-      if (size_ <= kInline) copy_inline(other);
+    FrameStates(const FrameStates& other) : size_(other.size_) {
+      if (size_ <= kInline) {
+        copy_inline(other);
+      } else {
+        more_ = std::make_unique<FrameState[]>(size_);
+        std::copy_n(other.more_.get(), size_, more_.get());
+      }
     }
     FrameStates(FrameStates&& other) noexcept : more_(std::move(other.more_)), size_(other.size_) {
       if (size_ <= kInline) copy_inline(other);
       other.size_ = 0;
     }
     FrameStates& operator=(const FrameStates& other) {
-      if (this != &other) {
-        more_ = other.more_;
-        size_ = other.size_;
-        if (size_ <= kInline) copy_inline(other);
-      }
+      if (this != &other) *this = FrameStates(other);
       return *this;
     }
     FrameStates& operator=(FrameStates&& other) noexcept {
@@ -113,7 +115,6 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
         more_ = std::move(other.more_);
         size_ = other.size_;
         if (size_ <= kInline) copy_inline(other);
-        other.more_.clear();
         other.size_ = 0;
       }
       return *this;
@@ -122,8 +123,8 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
 
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
-    FrameState* data() { return size_ <= kInline ? inline_.data() : more_.data(); }
-    const FrameState* data() const { return size_ <= kInline ? inline_.data() : more_.data(); }
+    FrameState* data() { return size_ <= kInline ? inline_.data() : more_.get(); }
+    const FrameState* data() const { return size_ <= kInline ? inline_.data() : more_.get(); }
     FrameState& operator[](std::size_t i) { return data()[i]; }
     const FrameState& operator[](std::size_t i) const { return data()[i]; }
     FrameState& back() { return data()[size_ - 1]; }
@@ -134,36 +135,37 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
       if (n <= kInline) {
         for (std::size_t i = 0; i < n; ++i) inline_[i] = FrameState{};
       } else {
-        more_.assign(n, FrameState{});
+        more_ = std::make_unique<FrameState[]>(n);  // value-initialised
       }
-      size_ = n;
+      size_ = static_cast<std::uint32_t>(n);
     }
     // The first min(size(), n) stay as they are; the others are new.
     void resize(std::size_t n) {
       if (n > kInline) {
-        if (size_ <= kInline) more_.assign(inline_.begin(), inline_.begin() + size_);
-        more_.resize(n);
-      } else if (size_ > kInline) {
-        std::copy_n(more_.begin(), n, inline_.begin());
-        more_.clear();
+        auto states = std::make_unique<FrameState[]>(n);  // value-initialised
+        std::copy_n(data(), std::min<std::size_t>(size_, n), states.get());
+        more_ = std::move(states);
       } else {
-        for (std::size_t i = size_; i < n; ++i) inline_[i] = FrameState{};
+        if (size_ > kInline) {
+          std::copy_n(more_.get(), n, inline_.begin());
+        } else {
+          for (std::size_t i = size_; i < n; ++i) inline_[i] = FrameState{};
+        }
       }
-      size_ = n;
+      size_ = static_cast<std::uint32_t>(n);
     }
 
    private:
-    static constexpr std::size_t kInline = 2;
-    // The first size_ (<= kInline) states of `other`, each copied as a whole: copy_n of a
-    // count known only at run time was a memmove call at every entry the timeline moves.
+    static constexpr std::size_t kInline = 1;
+    // The first size_ (<= kInline) states of `other`, copied as a whole: copy_n of a count
+    // known only at run time was a memmove call at every entry the timeline moves.
     void copy_inline(const FrameStates& other) {
-      static_assert(kInline == 2);
+      static_assert(kInline == 1);
       if (size_ > 0) inline_[0] = other.inline_[0];
-      if (size_ > 1) inline_[1] = other.inline_[1];
     }
     std::array<FrameState, kInline> inline_;  // the first size_ set (when size_ <= kInline)
-    std::vector<FrameState> more_;
-    std::size_t size_ = 0;
+    std::unique_ptr<FrameState[]> more_;      // all of them when size_ > kInline (else unused)
+    std::uint32_t size_ = 0;
   };
   struct Entry {
     // User-provided: value-initialising the aggregate cleared all of it first.
@@ -189,6 +191,19 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   // per hop of a lazy chain.
   inline bool try_lazy_hop(const LineBurst& burst);
   bool wants_a_report(const LineBurst& burst) const;
+  // What wants_a_report() and lazy_report_due() must look at, from the handlers and the
+  // interest (set rarely, asked at every hop): no report at all; every report (one handler
+  // only, or no interest); the frames, each asked of the interest.
+  enum class HopCheck : std::uint8_t { None, Always, Frames };
+  void refresh_hop_check() {
+    if (!on_start_ && !on_telegram_) {
+      hop_check_ = HopCheck::None;
+    } else if (!on_start_ || !on_telegram_ || interest_ == nullptr) {
+      hop_check_ = HopCheck::Always;
+    } else {
+      hop_check_ = HopCheck::Frames;
+    }
+  }
   // Whether the processor may want a frame (the lazy checks): only those to address 255
   // are asked while it wants no other (ReceiveInterest::may_want_addressed).
   bool may_want(const wire::DecodedFrame& frame) const {
@@ -305,6 +320,7 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   };
   sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;
+  HopCheck hop_check_ = HopCheck::None;
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
