@@ -69,9 +69,10 @@ struct ReceiveWants {
   // An MST is address 255 with one data byte (sercos-facts §2); one with a bad FCS is still
   // an MST (a broken one), never a list telegram.
   static bool is_mst(const wire::DecodedFrame& frame) {
+    if (frame.address != kAddress255) return false;  // most frames: decided by the address
     const bool whole =
         frame.error == wire::FrameError::None || frame.error == wire::FrameError::BadFcs;
-    return frame.address == kAddress255 && whole && frame.data.size() == 1;
+    return whole && frame.data.size() == 1;
   }
 
   const HeaderWait* header = nullptr;  // the list's

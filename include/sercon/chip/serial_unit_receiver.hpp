@@ -210,9 +210,11 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
     return addressed_wanted_ || frame.address == kAddress255;
   }
   void refresh_interest() {
-    addressed_wanted_ =
-        interest_ == nullptr ||
-        (wants_ != nullptr ? wants_->may_want_addressed() : interest_->may_want_addressed());
+    if (wants_ != nullptr) {  // the usual case: an interest with data
+      addressed_wanted_ = wants_->may_want_addressed();
+    } else {
+      addressed_wanted_ = interest_ == nullptr || interest_->may_want_addressed();
+    }
   }
   // The processor's answers: from its published data when it has some, without a call
   // (the usual case, so the rest is out of line).
