@@ -40,7 +40,9 @@ void SerialReceiver::set_lazy_hops(bool on) {
 // every hop.
 inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   if (hop_check_ != HopCheck::Frames) return hop_check_ == HopCheck::Always;
-  for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
+  const BurstDecode& decode = decode_burst(b.bits);
+  if (!addressed_wanted_ && !decode.to_255) return false;  // may_want() no frame
+  for (const wire::DecodedFrame& f : decode.frames) {
     if (!may_want(f)) continue;
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
     if (wants_start(start, f.address) || wants_telegram(start, f)) {

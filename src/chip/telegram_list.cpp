@@ -6,10 +6,6 @@ namespace sercon::chip {
 
 using telegram::Kind;
 
-namespace {
-constexpr HeaderWait kAnyTime{};  // a header without TCHK: its window is all time
-}  // namespace
-
 TelegramList::TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& client)
     : time_base_(time_base), scheduler_(time_base.scheduler()), ram_(ram), client_(client) {}
 
@@ -82,7 +78,7 @@ void TelegramList::walk(std::uint16_t address) {
     read_item(address, item_);
     // A receive header without TCHK just waits: no call (half the items a ring's lists hold).
     if (item_.kind == Kind::Receive && !item_.has(telegram::kTchk)) {
-      wait_for(item_, kAnyTime.opens, kAnyTime.closes);
+      wait_for(item_);
       return;
     }
     if (arm(item_) || item_.kind == Kind::EndMarker) return;
@@ -116,7 +112,7 @@ bool TelegramList::arm(const ListItem& item) {
 
 bool TelegramList::arm_receive(const ListItem& item) {
   if (!item.has(telegram::kTchk)) {
-    wait_for(item, kAnyTime.opens, kAnyTime.closes);
+    wait_for(item);
     return true;
   }
   const auto opens = time_base_.time_of_cycle_time(item.time - kWindowUs);

@@ -50,15 +50,16 @@ struct ReceivedTelegram {
 };
 
 // A receive header's wait, as the telegram list keeps it (the list's own state, read by the
-// receiver as data): while `waits`, a telegram whose opening flag begins in [opens, closes)
-// is the header's if `achk` is off or it brings `address`.
+// receiver as data): while `waits`, a telegram whose opening flag begins in the window
+// [opens, closes) (any time without `tchk`) is the header's if `achk` is off or it brings
+// `address`.
 struct HeaderWait {
   bool waits = false;
+  bool tchk = false;
   bool achk = false;
   std::uint8_t address = 0;
-  sim::Time opens = std::numeric_limits<sim::Time>::min();
-  sim::Time closes = std::numeric_limits<sim::Time>::max();
-  bool in_window(sim::Time start) const { return start >= opens && start < closes; }
+  sim::Time opens = 0, closes = 0;  // with tchk
+  bool in_window(sim::Time start) const { return !tchk || (start >= opens && start < closes); }
 };
 
 // What the telegram processor acts on, published as data that it keeps current at every

@@ -42,6 +42,9 @@ inline constexpr bool kRecycleBits = true;
 struct BurstDecode {
   std::vector<wire::DecodedFrame> frames;
   std::vector<std::size_t> address_end;  // per frame: one past the address byte's last bit
+  // Some frame is addressed 255 (an MST, a telegram to all drives): a lazy hop past a chip
+  // that waits for no telegram need look no further when none is.
+  bool to_255 = false;
 };
 
 // Decodes made from one bits object, kept with it (filled by line_decode_memo.cpp).

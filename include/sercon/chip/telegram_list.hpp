@@ -132,10 +132,20 @@ class TelegramList {
     state_ = state;
     wait_.waits = false;
   }
-  // A receive header (item_) waits for a telegram beginning in [opens, closes).
-  void wait_for(const ListItem& item, sim::Time opens, sim::Time closes) {
+  // A receive header (item_) waits for a telegram: without TCHK at any time, with it
+  // beginning in [opens, closes).
+  void wait_for(const ListItem& item) {
     state_ = State::Receive;
-    wait_ = HeaderWait{true, item.has(telegram::kAchk), item.adr(), opens, closes};
+    wait_.waits = true;
+    wait_.tchk = false;
+    wait_.achk = item.has(telegram::kAchk);
+    wait_.address = item.adr();
+  }
+  void wait_for(const ListItem& item, sim::Time opens, sim::Time closes) {
+    wait_for(item);
+    wait_.tchk = true;
+    wait_.opens = opens;
+    wait_.closes = closes;
   }
 
   TimeBase& time_base_;
