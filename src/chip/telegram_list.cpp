@@ -73,7 +73,8 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
 // Arms items until one waits for something; items already over are settled on the way.
 // A loop, not recursion: a long list of late items must not grow the stack. Each item is
 // read straight into item_ (what it holds matters only while an item is armed).
-void TelegramList::walk(std::uint16_t address) {
+// Flattened: arm() and the time base's event inline (a call per item otherwise).
+[[gnu::flatten]] void TelegramList::walk(std::uint16_t address) {
   for (;;) {
     read_item(address, item_);
     // A receive header without TCHK just waits: no call (half the items a ring's lists hold).
