@@ -128,12 +128,18 @@ void CycleControl::on_register_change(std::uint8_t address) {
                                                               sim::Scheduler::Action action,
                                                               bool cyc_clk) {
   // Ids of events that ran stay until a few have gathered (cancelling them is harmless):
-  // one MST per cycle need not scan the list each time.
+  // one MST per cycle need not scan the list each time. The last one has mostly run: its
+  // entry is reused.
+  const Recognition recognition{scheduler_.at(at, action, this), cyc_clk};
+  if (!recognitions_.empty() && !scheduler_.pending(recognitions_.back().event)) {
+    recognitions_.back() = recognition;
+    return;
+  }
   if (recognitions_.size() >= kKeptRecognitions) {
     std::erase_if(recognitions_,
                   [this](const Recognition& r) { return !scheduler_.pending(r.event); });
   }
-  recognitions_.push_back(Recognition{scheduler_.at(at, action, this), cyc_clk});
+  recognitions_.push_back(recognition);
 }
 
 void CycleControl::cyc_clk_action(void* control) {

@@ -55,12 +55,18 @@ void DivClk::reset(ResetCause) {
 void DivClk::plan(const CycleStart& start) {
   planned_.clear();  // the time base dropped the previous cycle's events
   const std::int64_t n = ndivclk_.get(regs_);
-  const std::int64_t cycle_end = start.tscyc == 0 ? kUnprogrammedCycleEnd : start.tscyc;
-  const std::int64_t first = regs_.value(kTdivclk);
   if (n == 0) {  // delta spec 2.7: "0 Never becomes active"
     first_due_ = true;
     return;
   }
+  plan_pulses(start, n);
+}
+
+// Out of line: plan() returns at once with NDIVCLK = 0 (DIV_CLK unused, the usual case)
+// without the set-up this needs.
+[[gnu::noinline]] void DivClk::plan_pulses(const CycleStart& start, std::int64_t n) {
+  const std::int64_t cycle_end = start.tscyc == 0 ? kUnprogrammedCycleEnd : start.tscyc;
+  const std::int64_t first = regs_.value(kTdivclk);
   if (!divclkmode_.on(regs_)) {
     first_due_ = true;  // mode 1, if chosen later, starts with a pulse
     const std::int64_t distance = regs_.value(kDtdivclk);

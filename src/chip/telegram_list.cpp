@@ -18,7 +18,7 @@ void TelegramList::stop() {
   set_state(State::Idle);
 }
 
-void TelegramList::start(std::uint16_t list_pointer) {
+[[gnu::flatten]] void TelegramList::start(std::uint16_t list_pointer) {
   const State was = state_;
   stop();
   items_read_ = 0;
@@ -73,7 +73,8 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
 // Arms items until one waits for something; items already over are settled on the way.
 // A loop, not recursion: a long list of late items must not grow the stack. Each item is
 // read straight into item_ (what it holds matters only while an item is armed).
-// Flattened: arm() and the time base's event inline (a call per item otherwise).
+// Flattened: arm() and the time base's event inline (a call per item otherwise); so are
+// its four callers (start, fire_transmit, offer, taken), each of which walks once a cycle.
 [[gnu::flatten]] void TelegramList::walk(std::uint16_t address) {
   for (;;) {
     read_item(address, item_);
@@ -141,7 +142,7 @@ void TelegramList::transmit_time(void* list) { static_cast<TelegramList*>(list)-
 
 void TelegramList::end_time(void* list) { static_cast<TelegramList*>(list)->fire_end(); }
 
-void TelegramList::fire_transmit() {
+[[gnu::flatten]] void TelegramList::fire_transmit() {
   event_ = 0;
   set_state(State::Idle);
   const ListItem item = item_;
@@ -175,7 +176,8 @@ void TelegramList::fire_end() {
   client_.end_reached(item_);
 }
 
-TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, ListItem& item) {
+[[gnu::flatten]] TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address,
+                                                         ListItem& item) {
   const Match match = would_take(start, address);
   if (match != Match::Accepted) return match;
   item = item_;
@@ -196,7 +198,7 @@ TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address, L
   return Match::Accepted;
 }
 
-void TelegramList::taken(const ListItem& item) {
+[[gnu::flatten]] void TelegramList::taken(const ListItem& item) {
   if (state_ != State::Held || item_.address != item.address) return;
   set_state(State::Idle);
   try {

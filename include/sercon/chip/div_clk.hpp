@@ -36,6 +36,7 @@ class DivClk : public ChipUnit {
 
  private:
   void plan(const CycleStart& start);
+  void plan_pulses(const CycleStart& start, std::int64_t n);  // NDIVCLK = n != 0
   void plan_pulse_at(std::int64_t cycle_time);
   void pulse_starts();
   void pulse_ends();
