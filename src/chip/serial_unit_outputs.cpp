@@ -51,7 +51,7 @@ void TxdOutputs::tell_line(LineListener& listener) const {
 }
 
 void TxdOutputs::connect(unsigned pin, LineListener& listener) {
-  unit_.receiver().absorb_lazy();
+  book_all();  // the follower may change
   Output& out = outputs_[index_of_pin(pin)];
   LineListener* const replaced = out.listener;
   out.listener = &listener;
@@ -66,7 +66,7 @@ void TxdOutputs::connect(unsigned pin, LineListener& listener) {
 }
 
 void TxdOutputs::disconnect(unsigned pin) {
-  unit_.receiver().absorb_lazy();
+  book_all();  // the follower may change
   Output& out = outputs_[index_of_pin(pin)];
   LineListener* const left = out.listener;
   out.listener = nullptr;
@@ -113,7 +113,8 @@ LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
 
 void TxdOutputs::change_condition(sim::Time at, LineCondition condition, sim::Time period) {
   prune();
-  const bool dropped = drop_announced_from(line_, at);
+  const bool dropped = drop_from(at);
+  if (unbooked_ > 0) book_unbooked();  // booked before what the follower is told now
   line_.push_back(RxdSegment::of(at, condition, period));
   if (lone_follower_ != nullptr) {
     lone_follower_->line_condition(at, condition, period);
@@ -125,6 +126,17 @@ void TxdOutputs::change_condition(sim::Time at, LineCondition condition, sim::Ti
     }
   }
   if (dropped || darkness_changes_at_back()) plan_pins();
+}
+
+void TxdOutputs::book_all() {
+  unit_.receiver().absorb_lazy();  // the lazy bursts into the line, unbooked
+  if (unbooked_ > 0) book_unbooked();
+}
+
+void TxdOutputs::book_unbooked() {
+  const std::size_t first = line_.size() - unbooked_;
+  unbooked_ = 0;
+  for (std::size_t i = first; i < line_.size(); ++i) lone_follower_->book_passed(line_[i].burst());
 }
 
 // Not one listener following the line: each that does is told.
@@ -222,7 +234,7 @@ void TxdOutputs::show(unsigned pin, const View& v) {
 }
 
 void TxdOutputs::refresh() {
-  unit_.receiver().absorb_lazy();
+  book_all();  // the follower may change
   for (unsigned pin = 1; pin <= SerialUnit::kTxdCount; ++pin) show(pin, view_of(pin));
 }
 

@@ -19,7 +19,7 @@ namespace sercon::chip {
 
 class SerialUnit;
 
-class TxdOutputs {
+class TxdOutputs final : public PassedBursts {
  public:
   explicit TxdOutputs(SerialUnit& unit);
   ~TxdOutputs();
@@ -55,8 +55,14 @@ class TxdOutputs {
   inline bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
   // The one listener following the line (null: none, or two); set while bursts are lazy.
   LineListener* lone_follower() const { return lone_follower_; }
-  // A burst passed through before: into the line as line_burst() would, no listener told.
+  // A burst passed through before: into the line as line_burst() would, no listener told
+  // (the listener books it when it asks, book_all).
   inline void absorb(const LineBurst& burst);  // serial_unit_pass_through.hpp
+  // PassedBursts: the bursts the lone follower took by pass_through (lazy hops, and the
+  // bursts line_burst() hands it) and has not booked, booked there in order. Every burst
+  // leaving TxD reaches that listener this way when it takes it, so a plain fibre books
+  // none of them unless something reads its history.
+  void book_all() override;
 
   // Registers, test mode, polarity, clocks or reset state changed: re-derive every pin and
   // tell the listeners whose view changed.
@@ -96,7 +102,34 @@ class TxdOutputs {
     };
     return dark(line_.back()) != dark(line_[line_.size() - 2]);
   }
-  void prune() { drop_replaced_by(line_, scheduler_.now()); }  // inline: at every burst
+  // Drops the segments replaced by now. A burst the lone follower has not booked goes
+  // unbooked when its successor has reached the far end too (the follower would drop it
+  // at its next booking anyway); else the follower books first. Inline: at every burst.
+  void prune() {
+    const sim::Time now = scheduler_.now();
+    while (line_.size() > 1 && line_[1].since <= now) {
+      if (unbooked_ == line_.size()) {  // the front is one of them
+        if (line_[1].since + follower_delay_ > now) {
+          book_unbooked();
+          continue;
+        }
+        --unbooked_;
+      }
+      line_.pop_front();
+    }
+  }
+  // drop_announced_from for the line: the bursts not booked are its last segments.
+  bool drop_from(sim::Time at) {
+    bool dropped = false;
+    while (!line_.empty() && line_.back().since >= at) {
+      line_.pop_back();
+      if (unbooked_ > 0) --unbooked_;
+      dropped = true;
+    }
+    return dropped;
+  }
+  // The last unbooked_ segments of the line into the lone follower (book_passed).
+  [[gnu::noinline]] void book_unbooked();
   void tell_followers(const LineBurst& burst);
   bool dark_now() const;
   const RxdSegment& line_now() const;
@@ -109,6 +142,10 @@ class TxdOutputs {
   sim::Scheduler& scheduler_;  // the chip's: asked for now at every burst
   std::array<Output, 6> outputs_{};
   LineListener* lone_follower_ = nullptr;  // the one listener following the line; none or two: null
+  // The last unbooked_ segments of line_ are bursts the lone follower took by pass_through
+  // and has not booked; they reach it follower_delay_ after they leave.
+  std::size_t unbooked_ = 0;
+  sim::Time follower_delay_ = 0;
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).
   sim::CircularQueue<RxdSegment> line_;

@@ -36,12 +36,26 @@ inline void SerialRepeater::input(const RxdSegment& segment) {
   emit_from(at);
 }
 
+// The lone follower (a plain fibre) takes the burst by pass_through when it can, and this
+// delivers it to the listener behind: the follower books it only when asked (book_all).
 inline void TxdOutputs::line_burst(const LineBurst& burst) {
   prune();
-  const bool dropped = drop_announced_from(line_, burst.start);
+  const bool dropped = drop_from(burst.start);
+  LineListener* const only = lone_follower_;
+  LineListener* next = nullptr;
+  const LineBurst* out = nullptr;
+  const bool passed = only != nullptr && only->pass_through(burst, next, out, *this);
+  if (passed) {
+    follower_delay_ = out->start - burst.start;
+  } else if (unbooked_ > 0) {
+    book_unbooked();  // booked before what it is told now
+  }
   append_burst(line_, burst, burst.start);
-  if (lone_follower_ != nullptr) {  // the usual case: one fibre behind the node
-    lone_follower_->line_burst(burst);
+  if (passed) {
+    ++unbooked_;  // first: what `next` is told may come back round to this line
+    next->line_burst(*out);
+  } else if (only != nullptr) {  // the usual case: one fibre behind the node
+    only->line_burst(burst);
   } else {
     tell_followers(burst);
   }
@@ -60,7 +74,7 @@ inline void TxdOutputs::absorb(const LineBurst& burst) {
   expect_absorbed_in_order("TxD", line_.back().since, burst.start);
   prune();
   append_burst(line_, burst, burst.start);
-  lone_follower_->book_passed(burst);  // it took the burst by pass_through
+  ++unbooked_;  // it took the burst by pass_through: booked when it asks (book_all)
 }
 
 inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,
@@ -73,7 +87,9 @@ inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next
   if (last.since >= burst.start || (!last.is_burst && last.condition == LineCondition::Dark)) {
     return false;
   }
-  return only->pass_through(burst, next, out, unit_.receiver());
+  if (!only->pass_through(burst, next, out, *this)) return false;
+  follower_delay_ = out->start - burst.start;
+  return true;
 }
 
 inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*& next,
