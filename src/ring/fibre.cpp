@@ -41,6 +41,7 @@ void Fibre::connect(chip::LineListener& output) {
   book_passed();
   chip::LineListener* const old = output_;
   output_ = &output;
+  update_plain();
   // The receiver it leaves has no signal any more, as after a break. Switched first: what
   // the old receiver is told may come back round into this fibre.
   if (old != nullptr && old != &output) {
@@ -52,6 +53,7 @@ void Fibre::connect(chip::LineListener& output) {
 void Fibre::disconnect() {
   chip::LineListener* const old = output_;
   output_ = nullptr;
+  update_plain();
   if (old != nullptr) old->line_condition(scheduler_.now(), LineCondition::Dark, 0);
 }
 
@@ -125,7 +127,7 @@ void Fibre::drop_from(sim::Time start) {
 bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& next,
                                 const LineBurst*& out, chip::PassedBursts& sender) {
   Fibre& f = fibre_;
-  if (f.broken_ || f.errors_.enabled() || f.output_ == nullptr) return false;
+  if (!f.plain_) return false;
   if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
   if (f.passed_from_ != nullptr && f.passed_from_ != &sender) return false;
   f.passed_from_ = &sender;
@@ -187,12 +189,14 @@ void Fibre::tell_far_end() {
 void Fibre::break_now() {
   if (broken_) return;
   broken_ = true;
+  update_plain();
   tell_far_end();
 }
 
 void Fibre::restore() {
   if (!broken_) return;
   broken_ = false;
+  update_plain();
   tell_far_end();
 }
 
@@ -208,6 +212,9 @@ void Fibre::restore_at(sim::Time t) {
   switches_.push_back(scheduler_.at(t, [this] { restore(); }));
 }
 
-void Fibre::set_bit_error_rate(double p, std::uint64_t seed) { errors_.configure(p, seed); }
+void Fibre::set_bit_error_rate(double p, std::uint64_t seed) {
+  errors_.configure(p, seed);
+  update_plain();
+}
 
 }  // namespace sercon::ring

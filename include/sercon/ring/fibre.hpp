@@ -92,6 +92,8 @@ class Fibre {
     if (passed_from_ != nullptr) std::exchange(passed_from_, nullptr)->book_all();
   }
   void tell_far_end();  // the far end's present condition, then what is still on its way
+  // After a break, restore, connect, disconnect or bit error rate change.
+  void update_plain() { plain_ = !broken_ && !errors_.enabled() && output_ != nullptr; }
   sim::Scheduler& scheduler_;
   double length_m_;
   sim::Time delay_;
@@ -99,6 +101,8 @@ class Fibre {
   chip::LineListener* output_ = nullptr;
   bool broken_ = false;
   BitErrors errors_;
+  // Whole, without bit errors and connected: a burst may pass through (asked at every hop).
+  bool plain_ = false;
   // What went in and reaches (or reached) the far end, in time order: the change in force
   // there now and those still on their way (kept while broken, for a restore).
   sim::CircularQueue<Change> history_;
