@@ -7,6 +7,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
+#include "sercon/chip/serial_unit_pass_through.hpp"
 #include "sercon/chip/serial_unit_receiver.hpp"
 
 namespace sercon::chip {
@@ -105,7 +106,7 @@ const RxdSegment& TxdOutputs::line_now() const {
 }
 
 LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
-  unit_.receiver().absorb_lazy();
+  unit_.repeater().absorb_passed();
   const RxdSegment& s = line_now();
   *period = s.period;
   return s.is_burst ? LineCondition::Idle : s.condition;
@@ -129,7 +130,7 @@ void TxdOutputs::change_condition(sim::Time at, LineCondition condition, sim::Ti
 }
 
 void TxdOutputs::book_all() {
-  unit_.receiver().absorb_lazy();  // the lazy bursts into the line, unbooked
+  unit_.repeater().absorb_passed();  // the bursts passed on into the line, unbooked
   if (unbooked_ > 0) book_unbooked();
 }
 
@@ -159,7 +160,7 @@ void TxdOutputs::plan_pins() {
     if (is_dark(line_[i]) == is_dark(line_[i - 1])) continue;
     pins_event_ = s.at(line_[i].since, [this] {
       pins_event_ = {};
-      unit_.receiver().absorb_lazy();
+      unit_.repeater().absorb_passed();
       prune();
       plan_pins();
     });

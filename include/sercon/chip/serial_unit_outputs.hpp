@@ -53,6 +53,12 @@ class TxdOutputs final : public PassedBursts {
   // until then nothing else here may read it (the receiver's absorb_lazy() comes first).
   // Inline (serial_unit_pass_through.hpp).
   inline bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
+  // The lone follower's pass_through alone: TxD's checks hold as they did for a burst passed
+  // before and not yet absorbed.
+  inline bool follower_pass_through(const LineBurst& burst, LineListener*& next,
+                                    const LineBurst*& out);
+  // How long after leaving a burst the lone follower took reaches the listener behind it.
+  sim::Time follower_delay() const { return follower_delay_; }
   // The one listener following the line (null: none, or two); set while bursts are lazy.
   LineListener* lone_follower() const { return lone_follower_; }
   // A burst passed through before: into the line as line_burst() would, no listener told

@@ -23,6 +23,8 @@ inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
 inline void SerialRepeater::input(const RxdSegment& segment) {
   if (!repon_ || unit_.bit_period() == 0) return;
   const sim::Time at = forward_time(segment.since);
+  if (segment.is_burst && forward_unbooked(segment, at)) return;
+  absorb_forwarded();
   // The later word wins (line.hpp).
   drop_announced_from(background_, at);
   prune();
@@ -62,7 +64,46 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   if (dropped || darkness_changes_at_back()) plan_pins();
 }
 
+// pass_through's checks; after a burst forwarded unbooked nothing has changed the repeater
+// or TxD (every way into them absorbs first), so only the listener's own are left.
+inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Time at) {
+  const sim::Time now = scheduler_.now();
+  if (!own_.empty() && own_.back().end() > now) return false;
+  const bool after = !forwarded_.empty();
+  if (after ? forwarded_.back().start >= at
+            : background_.empty() || background_.back().since >= at) {
+    return false;
+  }
+  LineBurst& kept = forwarded_.emplace_back();
+  kept.start = at;
+  kept.bit_period = segment.period;
+  kept.bits = segment.bits;
+  LineListener* next = nullptr;
+  const LineBurst* out = nullptr;
+  TxdOutputs& txd = unit_.outputs();
+  const bool passed =
+      after ? txd.follower_pass_through(kept, next, out) : txd.pass_through(kept, next, out);
+  if (!passed) {
+    forwarded_.pop_back();
+    return false;
+  }
+  const sim::Time delay = txd.follower_delay();
+  while (forwarded_.size() > 1 && forwarded_[1].start + delay <= now) forwarded_.pop_front();
+  next->line_burst(*out);
+  return true;
+}
+
+inline void SerialRepeater::absorb_passed() {
+  unit_.receiver().absorb_lazy();  // its repeater stage absorbs forwarded_ first
+  absorb_forwarded();
+}
+
 inline void SerialRepeater::absorb(const LineBurst& leaving) {
+  absorb_forwarded(leaving.start);  // earlier than the receiver's lazy bursts
+  book(leaving);
+}
+
+inline void SerialRepeater::book(const LineBurst& leaving) {
   const sim::Time leaves = leaving.start;
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
   prune();
@@ -87,7 +128,12 @@ inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next
   if (last.since >= burst.start || (!last.is_burst && last.condition == LineCondition::Dark)) {
     return false;
   }
-  if (!only->pass_through(burst, next, out, *this)) return false;
+  return follower_pass_through(burst, next, out);
+}
+
+inline bool TxdOutputs::follower_pass_through(const LineBurst& burst, LineListener*& next,
+                                              const LineBurst*& out) {
+  if (!lone_follower_->pass_through(burst, next, out, *this)) return false;
   follower_delay_ = out->start - burst.start;
   return true;
 }
@@ -99,6 +145,10 @@ inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*
   // What prune() would leave: no own telegram not yet over (they end in order), and the
   // background never pruned empty. Nothing is kept, so nothing needs pruning here.
   if (!own_.empty() && own_.back().end() > scheduler_.now()) return false;
+  if (!forwarded_.empty()) {  // TxD holds as it did for those: only its listener is asked
+    if (forwarded_.back().start >= leaves) return false;
+    return unit_.outputs().follower_pass_through(leaving, next, out);
+  }
   if (background_.empty() || background_.back().since >= leaves) return false;
   return unit_.outputs().pass_through(leaving, next, out);
 }

@@ -41,6 +41,9 @@ class SerialRepeater {
   // Inline (serial_unit_pass_through.hpp).
   inline bool pass_through(const LineBurst& leaving, LineListener*& next, const LineBurst*& out);
   inline void absorb(const LineBurst& leaving);  // serial_unit_pass_through.hpp
+  // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
+  // booked there (the node's lazy ones, then those of read hops) are booked.
+  inline void absorb_passed();  // serial_unit_pass_through.hpp
 
   // When something that reaches RxD at `t` leaves on TxD.
   inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp
@@ -48,7 +51,18 @@ class SerialRepeater {
 
  private:
   void take_up_received();  // REPON on: the received line from now on
-  void prune() {            // inline: at every burst
+  // A burst the receiver read (the full path) that would go straight on: handed to TxD's
+  // listener at once and kept in forwarded_, booked here and in TxD only when something
+  // looks (absorb_forwarded), as a lazy hop's. False: it takes the full path.
+  inline bool forward_unbooked(const RxdSegment& segment, sim::Time at);
+  // `next`: when what is booked after them leaves (kNoneNext: not known).
+  static constexpr sim::Time kNoneNext = INT64_MAX / 2;
+  void absorb_forwarded(sim::Time next = kNoneNext) {
+    if (!forwarded_.empty()) absorb_forwarded_now(next);
+  }
+  void absorb_forwarded_now(sim::Time next);
+  inline void book(const LineBurst& leaving);  // into the line and TxD's, telling no one
+  void prune() {                               // inline: at every burst
     const sim::Time now = scheduler_.now();
     while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
     drop_replaced_by(background_, now);
@@ -67,6 +81,10 @@ class SerialRepeater {
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
   sim::CircularQueue<RxdSegment> background_;
   sim::CircularQueue<LineBurst> own_;  // own telegrams not yet over, in time order
+  // Read hops' bursts passed on (as they leave TxD) and not yet booked, in time order, all
+  // after background_'s last. One whose successor has reached TxD's listener by now goes
+  // unbooked: the repeater, TxD and the listener would have dropped it then.
+  sim::CircularQueue<LineBurst> forwarded_;
 };
 
 }  // namespace sercon::chip
