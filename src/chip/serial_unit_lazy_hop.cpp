@@ -32,6 +32,7 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
 void SerialReceiver::set_lazy_hops(bool on) {
   if (!on) absorb_lazy();
   lazy_hops_ = on;
+  unit_.repeater().set_forward_unbooked(on);  // off: read hops take the full path too
 }
 
 // What consider() would plan for the burst's frames in the telegram processor's present

@@ -23,7 +23,7 @@ inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
 inline void SerialRepeater::input(const RxdSegment& segment) {
   if (!repon_ || unit_.bit_period() == 0) return;
   const sim::Time at = forward_time(segment.since);
-  if (segment.is_burst && forward_unbooked(segment, at)) return;
+  if (segment.is_burst && forward_unbooked_ && forward_unbooked(segment, at)) return;
   absorb_forwarded();
   // The later word wins (line.hpp).
   drop_announced_from(background_, at);

@@ -45,6 +45,12 @@ class SerialRepeater {
   // booked there (the node's lazy ones, then those of read hops) are booked.
   inline void absorb_passed();  // serial_unit_pass_through.hpp
 
+  // Read hops forwarded unbooked (forward_unbooked), on unless lazy hops are switched off.
+  void set_forward_unbooked(bool on) {
+    if (!on) absorb_forwarded();
+    forward_unbooked_ = on;
+  }
+
   // When something that reaches RxD at `t` leaves on TxD.
   inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp
   bool on() const { return repon_; }
@@ -85,6 +91,7 @@ class SerialRepeater {
   // after background_'s last. One whose successor has reached TxD's listener by now goes
   // unbooked: the repeater, TxD and the listener would have dropped it then.
   sim::CircularQueue<LineBurst> forwarded_;
+  bool forward_unbooked_ = true;
 };
 
 }  // namespace sercon::chip
