@@ -110,12 +110,13 @@ inline void SerialReceiver::prune_lazy(sim::Time now) {
 // RxD too) and at the next receiver (the TxD listener's booking, made when absorbed, is
 // superseded there), and this one's reports would be past. The full path would have
 // dropped them.
+// Called when the second one has reached the next receiver (prune_lazy asks that first).
 inline void SerialReceiver::drop_lazy_over(sim::Time now) {
-  while (lazy_.size() > 1 && lazy_[1].reaches <= now) {
+  do {
     const LazyBurst& front = lazy_.front();
     if (front.end_at_rxd() + report_lag(front.leaving.bit_period) >= now) return;
     lazy_.pop_front();
-  }
+  } while (lazy_.size() > 1 && lazy_[1].reaches <= now);
 }
 
 void SerialReceiver::absorb_waiting() {

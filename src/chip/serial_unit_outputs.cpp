@@ -20,9 +20,6 @@ std::size_t index_of_pin(unsigned pin) {
   return pin - 1;
 }
 
-// No signal: the TxD pins show the dark level.
-bool is_dark(const RxdSegment& s) { return !s.is_burst && s.condition == LineCondition::Dark; }
-
 }  // namespace
 
 TxdOutputs::TxdOutputs(SerialUnit& unit) : unit_(unit), scheduler_(unit.chip().scheduler()) {

@@ -98,15 +98,15 @@ class TxdOutputs final : public PassedBursts {
   void set_pins_following_line();
   void tell_line(LineListener& listener) const;  // the line now, then what is announced
   bool supersede(sim::Time at);                  // true when something announced was dropped
+  static bool is_dark(const RxdSegment& s) {     // no signal: the pins show the dark level
+    return !s.is_burst && s.condition == LineCondition::Dark;
+  }
   // The pins change only where the line goes dark or lights up; an announcement that does
   // neither (and drops nothing announced before) leaves the plan as it is. Inline: at every
   // burst.
   bool darkness_changes_at_back() const {
     if (line_.size() < 2) return true;
-    const auto dark = [](const RxdSegment& s) {
-      return !s.is_burst && s.condition == LineCondition::Dark;
-    };
-    return dark(line_.back()) != dark(line_[line_.size() - 2]);
+    return is_dark(line_.back()) != is_dark(line_[line_.size() - 2]);
   }
   // Drops the segments replaced by now. A burst the lone follower has not booked goes
   // unbooked when its successor has reached the far end too (the follower would drop it

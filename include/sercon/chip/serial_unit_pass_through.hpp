@@ -61,7 +61,8 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   } else {
     tell_followers(burst);
   }
-  if (dropped || darkness_changes_at_back()) plan_pins();
+  // The back is the burst: the line lights up only if it was dark before.
+  if (dropped || line_.size() < 2 || is_dark(line_[line_.size() - 2])) plan_pins();
 }
 
 // pass_through's checks; after a burst forwarded unbooked nothing has changed the repeater

@@ -60,7 +60,8 @@ class SerialRepeater {
   // A burst the receiver read (the full path) that would go straight on: handed to TxD's
   // listener at once and kept in forwarded_, booked here and in TxD only when something
   // looks (absorb_forwarded), as a lazy hop's. False: it takes the full path.
-  inline bool forward_unbooked(const RxdSegment& segment, sim::Time at);
+  // Always inline: GCC makes it a call (the chain it starts comes back into input()).
+  [[gnu::always_inline]] inline bool forward_unbooked(const RxdSegment& segment, sim::Time at);
   // `next`: when what is booked after them leaves (kNoneNext: not known).
   static constexpr sim::Time kNoneNext = INT64_MAX / 2;
   void absorb_forwarded(sim::Time next = kNoneNext) {
