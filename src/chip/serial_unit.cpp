@@ -35,6 +35,7 @@ void SerialUnit::reset(ResetCause) {
   receiver_->absorb_lazy();  // at the rate and settings they were passed on with
   running_ = false;
   bit_period_ = 0;
+  receiver_->refresh_hop_period();
   transmitter_->reset();
   receiver_->reset();
   monitor_->reset();
@@ -45,6 +46,7 @@ void SerialUnit::reset(ResetCause) {
 void SerialUnit::release() {
   running_ = true;
   bit_period_ = compute_bit_period();
+  receiver_->refresh_hop_period();
   repon_ = fields_.repon.on(chip_.regs());
   poltxd_ = fields_.poltxd.on(chip_.regs());
   control_ = control_bits();
@@ -79,6 +81,7 @@ void SerialUnit::on_register_change(std::uint8_t address) {
     if (period == bit_period_ && repon == repon_ && poltxd == poltxd_) return;
     const bool rate_changed = period != bit_period_;
     bit_period_ = period;
+    receiver_->refresh_hop_period();
     repon_ = repon;
     poltxd_ = poltxd;
     if (rate_changed) receiver_->refresh_rate();

@@ -32,7 +32,12 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
 void SerialReceiver::set_lazy_hops(bool on) {
   if (!on) absorb_lazy();
   lazy_hops_ = on;
+  refresh_hop_period();
   unit_.repeater().set_forward_unbooked(on);  // off: read hops take the full path too
+}
+
+void SerialReceiver::refresh_hop_period() {
+  hop_period_ = lazy_hops_ && unit_.running() ? unit_.bit_period() : 0;
 }
 
 // What consider() would plan for the burst's frames in the telegram processor's present
@@ -54,9 +59,10 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
 }
 
 inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
-  if (!lazy_hops_ || chain_depth >= kMaxChain || !unit_.running()) return false;
+  // Lazy hops on, running (a unit in reset has no bit period) and at this chip's rate.
+  if (b.bit_period != hop_period_ || chain_depth >= kMaxChain) return false;
   const sim::Time now = scheduler_.now();
-  if (b.bit_period != unit_.bit_period() || b.start <= now) return false;
+  if (b.start <= now) return false;
   // Asked first of the dearer checks: it is the one that fails at a node that reads the
   // burst (the checks have no effects, so their order is free).
   if (wants_a_report(b) || !recactn_.idle()) return false;

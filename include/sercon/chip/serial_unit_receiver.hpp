@@ -60,6 +60,8 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   // runs before anything reads or changes them. Off: every burst takes the full path (the
   // results are the same; the tests compare both).
   void set_lazy_hops(bool on);
+  // After the unit's running state or bit period changes (SerialUnit), at once.
+  void refresh_hop_period();
   void absorb_lazy() {
     if (!lazy_.empty()) absorb_waiting();  // inline: asked before every change, mostly none
   }
@@ -322,6 +324,9 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   };
   sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;
+  // The rate a burst must come at to hop lazily: the unit's bit period while lazy hops are
+  // on (0 while not running), else 0. Kept where those change (asked at every hop).
+  sim::Time hop_period_ = 0;
   HopCheck hop_check_ = HopCheck::None;
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
