@@ -69,13 +69,33 @@ sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
   const telegram::Storage storage = telegram::storage_of(item.word0);
   // Double buffer: the data goes into the buffer VAL does not name.
   const bool second_buffer = !storage.dma && storage.dbuf && !val;
+  const std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
+  std::array<std::uint16_t, telegram::kReceiveContainerWords> head{};  // control, POS
+  ram_.read_run(control, head);
+  // Most telegrams have one plain container (no DMA, no service container): its words
+  // straight into the buffer, without the general loop's set-up.
+  if (storage.dma || telegram::container_svfl(head[0]) || !telegram::container_lastdc(head[0]))
+    return store_containers(storage, second_buffer, control, head, error_free, port);
+  const std::uint16_t len = telegram::container_len(head[0]);
+  const std::size_t first = std::min<std::size_t>(head[1], arrived_words_);
+  const std::size_t last = std::min<std::size_t>(std::size_t{head[1]} + len, arrived_words_);
+  const std::uint32_t data = control + telegram::kReceiveContainerWords;
+  ram_.write_run_le(second_buffer ? data + len : data, arrived_bytes_ + 2 * first, last - first);
+  return 0;
+}
+
+// The general case: containers from the one at `control` (whose control word and POS
+// were read as `head`) up to the one with LASTDC.
+sim::Time ReceivePath::store_containers(telegram::Storage storage, bool second_buffer,
+                                        std::uint32_t control, std::array<std::uint16_t, 2> head,
+                                        bool error_free, ServiceChannelPort& port) {
   sim::Time work = 0;
   if (storage.dma) dma_words_.clear();
-  std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
   for (std::uint32_t n = 0;; ++n) {
-    if (n >= ram_.size()) throw_list_fault("receive containers without LASTDC");
-    std::array<std::uint16_t, telegram::kReceiveContainerWords> head{};  // control, POS
-    ram_.read_run(control, head);
+    if (n != 0) {
+      if (n >= ram_.size()) throw_list_fault("receive containers without LASTDC");
+      ram_.read_run(control, head);
+    }
     // The control word's fields tested in place (a Container would be built in memory).
     const std::uint16_t len = telegram::container_len(head[0]);
     const std::uint16_t pos = head[1];

@@ -5,6 +5,7 @@
 // header whose telegram did not come gets RERR and NERR + 1.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -48,6 +49,9 @@ class ReceivePath {
   std::span<const std::uint16_t> arrived(std::size_t first, std::size_t last);
   // Inline (defined in the .cpp, called once there): finish() and store() are one function.
   inline sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
+  sim::Time store_containers(telegram::Storage storage, bool second_buffer, std::uint32_t control,
+                             std::array<std::uint16_t, 2> head, bool error_free,
+                             ServiceChannelPort& port);
   sim::Time store_through(bool dma, std::uint16_t control_word, std::uint32_t control,
                           std::uint32_t buffer, std::size_t first, std::size_t last,
                           bool error_free, ServiceChannelPort& port);
