@@ -43,39 +43,41 @@ std::span<const std::uint16_t> ReceivePath::arrived(std::size_t first, std::size
 ReceivePath::Outcome ReceivePath::finish(const ListItem& item, const wire::DecodedFrame& frame,
                                          ServiceChannelPort& port) {
   Outcome outcome;
-  outcome.error = !frame.ok() || frame.data.size() != 2u * item.length;
+  const bool error = !frame.ok() || frame.data.size() != 2u * item.length;
+  outcome.error = error;
   take_words(frame);
   const std::uint16_t word0 = ram_.read(item.address);
   const bool val = (word0 & kVal) != 0;
-  outcome.service_work = store(item, val, !outcome.error, port);
+  // Storage tested as bits of word 0 (a Storage would be built in a register).
+  const bool double_buffer = (item.word0 & (telegram::kDma | telegram::kDbuf)) == telegram::kDbuf;
+  // Double buffer: the data goes into the buffer VAL does not name.
+  outcome.service_work = store(item, double_buffer && !val, !error, port);
 
-  const telegram::Storage storage = telegram::storage_of(item.word0);
   auto next = static_cast<std::uint16_t>(word0 & ~(kRerr | kVal));
-  if (outcome.error) next |= kRerr;
+  if (error) next |= kRerr;
   // Double buffer: VAL names the valid buffer and flips to the one just written when the
   // telegram was good. Single buffer and DMA: VAL says whether the data is good.
-  const bool next_val = storage.dbuf && !storage.dma ? (val != !outcome.error) : !outcome.error;
+  const bool next_val = double_buffer ? (val != !error) : !error;
   if (next_val) next |= kVal;
   if (!item.has(telegram::kAchk)) {
     next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | frame.address);
   }
   ram_.write(item.address, next);
-  if (outcome.error) ram_.count_error(item.address + telegram::kNerrWord);
+  if (error) ram_.count_error(item.address + telegram::kNerrWord);
   return outcome;
 }
 
-sim::Time ReceivePath::store(const ListItem& item, bool val, bool error_free,
+sim::Time ReceivePath::store(const ListItem& item, bool second_buffer, bool error_free,
                              ServiceChannelPort& port) {
-  const telegram::Storage storage = telegram::storage_of(item.word0);
-  // Double buffer: the data goes into the buffer VAL does not name.
-  const bool second_buffer = !storage.dma && storage.dbuf && !val;
   const std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
   std::array<std::uint16_t, telegram::kReceiveContainerWords> head{};  // control, POS
   ram_.read_run(control, head);
   // Most telegrams have one plain container (no DMA, no service container): its words
   // straight into the buffer, without the general loop's set-up.
-  if (storage.dma || telegram::container_svfl(head[0]) || !telegram::container_lastdc(head[0]))
-    return store_containers(storage, second_buffer, control, head, error_free, port);
+  if (item.has(telegram::kDma) || telegram::container_svfl(head[0]) ||
+      !telegram::container_lastdc(head[0]))
+    return store_containers(telegram::storage_of(item.word0), second_buffer, control, head,
+                            error_free, port);
   const std::uint16_t len = telegram::container_len(head[0]);
   const std::size_t first = std::min<std::size_t>(head[1], arrived_words_);
   const std::size_t last = std::min<std::size_t>(std::size_t{head[1]} + len, arrived_words_);

@@ -17,9 +17,14 @@ void TransmitPath::clear_send_once(const ListItem& item, bool val) {
 [[gnu::flatten]] std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool val,
                                                                     ServiceChannelPort& port) {
   static_assert(std::endian::native == std::endian::little);
-  const telegram::Storage storage = telegram::storage_of(item.word0);
+  // Storage tested as bits of word 0 (a Storage would be built in a register).
+  const bool dma = item.has(telegram::kDma);
+  const bool dbuf = item.has(telegram::kDbuf);
+  // Data words after a container's control word per data word: none with DMA, two
+  // buffers with double buffering (Storage::buffer_words).
+  const std::uint32_t buffers = dma ? 0 : (dbuf ? 2 : 1);
   // With double buffering VAL names the buffer that goes out (datasheet 4.2.1).
-  const bool second_buffer = storage.dbuf && val;
+  const bool second_buffer = dbuf && val;
   const std::size_t total = item.length;
   words_.resize(total);  // each word written below: by a container, or as 0 at the end
   std::size_t filled = 0;
@@ -32,14 +37,14 @@ void TransmitPath::clear_send_once(const ListItem& item, bool val) {
     const std::uint16_t len = telegram::container_len(control_word);
     const std::uint32_t data = control + telegram::kTransmitContainerWords;
     const std::uint32_t buffer = second_buffer ? data + len : data;
-    if (!storage.dma && !telegram::container_svfl(control_word) && filled + len <= total) {
+    if (!dma && !telegram::container_svfl(control_word) && filled + len <= total) {
       ram_.read_run(buffer, std::span<std::uint16_t>(words_.data() + filled, len));
     } else {
-      take(storage.dma, control_word, control, buffer, filled, port);
+      take(dma, control_word, control, buffer, filled, port);
     }
     filled += len;
     if (telegram::container_lastdc(control_word)) break;
-    control = data + storage.buffer_words(len);
+    control = data + buffers * len;
   }
   // Words the containers did not supply go out as 0.
   if (filled < total)

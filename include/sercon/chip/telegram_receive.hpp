@@ -31,8 +31,8 @@ class ReceivePath {
   // The telegram begins (its address is in): single buffer and DMA data become invalid.
   // Returns whether it cleared VAL. Inline: at every telegram a header takes.
   bool begin(const ListItem& item) {
-    const telegram::Storage storage = telegram::storage_of(item.word0);
-    if (storage.dbuf && !storage.dma) return false;
+    // Double buffer without DMA (Storage tested as bits of word 0).
+    if ((item.word0 & (telegram::kDma | telegram::kDbuf)) == telegram::kDbuf) return false;
     const std::uint16_t word0 = ram_.read(item.address);
     ram_.write(item.address, static_cast<std::uint16_t>(word0 & ~telegram::kVal));
     return (word0 & telegram::kVal) != 0;
@@ -48,7 +48,8 @@ class ReceivePath {
   void take_words(const wire::DecodedFrame& frame);
   std::span<const std::uint16_t> arrived(std::size_t first, std::size_t last);
   // Inline (defined in the .cpp, called once there): finish() and store() are one function.
-  inline sim::Time store(const ListItem& item, bool val, bool error_free, ServiceChannelPort& port);
+  inline sim::Time store(const ListItem& item, bool second_buffer, bool error_free,
+                         ServiceChannelPort& port);
   sim::Time store_containers(telegram::Storage storage, bool second_buffer, std::uint32_t control,
                              std::array<std::uint16_t, 2> head, bool error_free,
                              ServiceChannelPort& port);
