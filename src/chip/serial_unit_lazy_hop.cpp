@@ -33,7 +33,9 @@ void SerialReceiver::set_lazy_hops(bool on) {
   if (!on) absorb_lazy();
   lazy_hops_ = on;
   refresh_hop_period();
-  unit_.repeater().set_forward_unbooked(on);  // off: read hops take the full path too
+  // Off: read hops and the fibre behind TxD take the full path too.
+  unit_.repeater().set_forward_unbooked(on);
+  unit_.outputs().set_pass_unbooked(on);
 }
 
 void SerialReceiver::refresh_hop_period() {
@@ -113,8 +115,8 @@ inline void SerialReceiver::prune_lazy(sim::Time now) {
 }
 
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
-// RxD too) and at the next receiver (the TxD listener's booking, made when absorbed, is
-// superseded there), and this one's reports would be past. The full path would have
+// RxD too) and at the next receiver (the fibre would drop this one from its history when it
+// books them), and this one's reports would be past. The full path would have
 // dropped them.
 // Called when the second one has reached the next receiver (prune_lazy asks that first).
 inline void SerialReceiver::drop_lazy_over(sim::Time now) {

@@ -107,7 +107,8 @@ void Fibre::take(Change change) {
 }
 
 // The later word wins (line.hpp); what is no longer in force at the far end is forgotten.
-// Inline: every hop, lazy or not, books a burst here.
+// Inline: every burst booked here goes through it (those a sender passed through unbooked
+// when the history is read, book_passed).
 inline Fibre::Change& Fibre::record_at(sim::Time start) {
   if (!history_.empty() && history_.back().burst.start >= start) drop_from(start);
   const sim::Time now = scheduler_.now();

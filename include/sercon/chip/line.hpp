@@ -51,9 +51,9 @@ struct LineBurst {
   sim::Time end() const { return start + duration(); }
 };
 
-// A sender of lazy hops (line.hpp pass_through): it keeps the bursts a listener took
-// without booking them, and books them there (LineListener::book_passed, in order) when the
-// listener asks (book_all), before the listener reads or changes what it holds.
+// A sender that hands bursts on by pass_through (below; a chip's TxD): it keeps the bursts a
+// listener took without booking them, and books them there (LineListener::book_passed, in order)
+// when the listener asks (book_all), before the listener reads or changes what it holds.
 class PassedBursts {
  public:
   virtual void book_all() = 0;

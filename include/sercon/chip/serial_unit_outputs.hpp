@@ -50,7 +50,7 @@ class TxdOutputs final : public PassedBursts {
   // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
   // burst is announced after everything before it, the listener may take it and hand it on
   // (LineListener::pass_through); the line itself takes the burst later, by absorb(), and
-  // until then nothing else here may read it (the receiver's absorb_lazy() comes first).
+  // until then nothing else here may read it (the repeater's absorb_passed() comes first).
   // Inline (serial_unit_pass_through.hpp).
   inline bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
   // The lone follower's pass_through alone: TxD's checks hold as they did for a burst passed
@@ -69,6 +69,12 @@ class TxdOutputs final : public PassedBursts {
   // leaving TxD reaches that listener this way when it takes it, so a plain fibre books
   // none of them unless something reads its history.
   void book_all() override;
+  // line_burst() hands bursts to the lone follower unbooked (above): on unless lazy hops are
+  // switched off, so that off is the full path at the fibre too (the tests compare both).
+  void set_pass_unbooked(bool on) {
+    if (!on && unbooked_ > 0) book_unbooked();
+    pass_unbooked_ = on;
+  }
 
   // Registers, test mode, polarity, clocks or reset state changed: re-derive every pin and
   // tell the listeners whose view changed.
@@ -151,6 +157,7 @@ class TxdOutputs final : public PassedBursts {
   // The last unbooked_ segments of line_ are bursts the lone follower took by pass_through
   // and has not booked; they reach it follower_delay_ after they leave.
   std::size_t unbooked_ = 0;
+  bool pass_unbooked_ = true;
   sim::Time follower_delay_ = 0;
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).

@@ -46,7 +46,8 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   LineListener* const only = lone_follower_;
   LineListener* next = nullptr;
   const LineBurst* out = nullptr;
-  const bool passed = only != nullptr && only->pass_through(burst, next, out, *this);
+  const bool passed =
+      pass_unbooked_ && only != nullptr && only->pass_through(burst, next, out, *this);
   if (passed) {
     follower_delay_ = out->start - burst.start;
   } else if (unbooked_ > 0) {

@@ -31,7 +31,7 @@
 
 namespace sercon::chip {
 
-class SerialReceiver final : public LineListener, public PassedBursts, private LazyPin::Source {
+class SerialReceiver final : public LineListener, private LazyPin::Source {
  public:
   explicit SerialReceiver(SerialUnit& unit);
   ~SerialReceiver() override;
@@ -57,7 +57,8 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   // before) and that the repeater, TxD and the fibre behind would only pass on, goes
   // straight to the next receiver; this node keeps just the burst. absorb_lazy() takes such
   // bursts into the receiver, repeater and TxD timelines as the full path would have, and
-  // runs before anything reads or changes them. Off: every burst takes the full path (the
+  // runs before anything reads or changes them. Off: every burst takes the full path, at the
+  // repeater, TxD and the fibre behind too (the
   // results are the same; the tests compare both).
   void set_lazy_hops(bool on);
   // After the unit's running state or bit period changes (SerialUnit), at once.
@@ -65,8 +66,6 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   void absorb_lazy() {
     if (!lazy_.empty()) absorb_waiting();  // inline: asked before every change, mostly none
   }
-  // The fibre behind TxD books the bursts it passed on lazily (they go in with the rest).
-  void book_all() override { absorb_lazy(); }
   std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
   std::size_t lazy_bursts_waiting() const { return lazy_.size(); }  // not yet absorbed
 
@@ -318,7 +317,7 @@ class SerialReceiver final : public LineListener, public PassedBursts, private L
   struct LazyBurst {
     LineBurst leaving;
     sim::Time arrived = 0;
-    sim::Time reaches = 0;  // the next receiver (the TxD listener books it only when absorbed)
+    sim::Time reaches = 0;  // the next receiver (the fibre books it only when it reads its history)
     sim::Time leaves() const { return leaving.start; }
     sim::Time end_at_rxd() const { return arrived + leaving.duration(); }
   };

@@ -35,14 +35,15 @@ class SerialRepeater {
 
   // Lazy hops (docs/serial-and-ring.md): a burst that reaches RxD at burst.start, when it
   // would go straight on (REPON on, nothing of its own in the way or announced after it),
-  // is handed to TxD's pass_through() at the time it leaves; absorb() takes it into the
+  // is handed to TxD's pass_through() at the time it leaves (to the lone follower's alone
+  // after a read hop's burst forwarded unbooked); absorb() takes it into the
   // repeater's line (and TxD's) later, as input() would have, telling no one.
   // `leaving` starts at forward_time(the start at RxD); `absorb` gets it again.
   // Inline (serial_unit_pass_through.hpp).
   inline bool pass_through(const LineBurst& leaving, LineListener*& next, const LineBurst*& out);
   inline void absorb(const LineBurst& leaving);  // serial_unit_pass_through.hpp
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
-  // booked there (the node's lazy ones, then those of read hops) are booked.
+  // booked there (those of read hops, then the node's lazy ones) are booked.
   inline void absorb_passed();  // serial_unit_pass_through.hpp
 
   // Read hops forwarded unbooked (forward_unbooked), on unless lazy hops are switched off.
