@@ -29,7 +29,7 @@ std::unique_ptr<const BurstDecode> run_decoder(const wire::LineBits& bits, std::
     f.start_bit -= 1;  // the lead-in bit
     f.end_bit -= 1;
     result->address_end.push_back(f.start_bit + address_end_bit(f.address));
-    result->to_255 = result->to_255 || f.address == 0xFF;
+    result->to_255 = result->to_255 || f.address == kAddress255;
     result->frames.push_back(std::move(f));
   });
   const std::uint8_t lead_in = bits.level(0) ? 0x00 : 0x80;  // the opposite level, MSB first
@@ -94,7 +94,7 @@ void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::u
     f.error = wire::FrameError::TooShort;
   }
   result->address_end.assign(1, where.start_bit + address_end_bit(address));
-  result->to_255 = address == 0xFF;
+  result->to_255 = address == kAddress255;
   d.whole = std::move(result);
 }
 

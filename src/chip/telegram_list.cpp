@@ -184,7 +184,6 @@ void TelegramList::fire_end() {
   cancel_event();
   // Doc §2: the walk reaches the items behind a receive header only once it is served; an
   // address-255 telegram may still prove to be an MST, which serves no header (§3).
-  constexpr std::uint8_t kAddress255 = 0xFF;
   if (address == kAddress255) {
     set_state(State::Held);
     return Match::Accepted;

@@ -8,7 +8,7 @@ namespace {
 using telegram::kCycl;
 using telegram::kEn;
 
-constexpr std::uint8_t kMstAddress = ReceiveWants::kAddress255;
+constexpr std::uint8_t kMstAddress = kAddress255;
 constexpr sim::Time kNone = ReceiveWants::kNone;
 
 bool is_mst(const wire::DecodedFrame& frame) { return ReceiveWants::is_mst(frame); }

@@ -66,7 +66,6 @@ struct HeaderWait {
 // change (ReceiveInterest::published): the receiver compares a frame with it without a call.
 struct ReceiveWants {
   static constexpr sim::Time kNone = std::numeric_limits<sim::Time>::min();
-  static constexpr std::uint8_t kAddress255 = 0xFF;
   // An MST is address 255 with one data byte (sercos-facts §2); one with a bad FCS is still
   // an MST (a broken one), never a list telegram.
   static bool is_mst(const wire::DecodedFrame& frame) {

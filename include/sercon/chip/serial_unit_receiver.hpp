@@ -302,8 +302,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   SerialUnit::TelegramStartHandler on_start_;
   SerialUnit::TelegramHandler on_telegram_;
   const ReceiveInterest* interest_ = nullptr;
-  const ReceiveWants* wants_ = nullptr;              // interest_->published(), read at every ask
-  static constexpr std::uint8_t kAddress255 = 0xFF;  // MSTs and telegrams to all drives
+  const ReceiveWants* wants_ = nullptr;  // interest_->published(), read at every ask
   // interest_->may_want_addressed(), asked again at every plan and after every report.
   bool addressed_wanted_ = true;
   // Never empty; front in force now (or earlier). A vector: it holds a handful of entries,

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -37,6 +38,10 @@ inline constexpr bool kRecycleBits = true;
 #else
 inline constexpr bool kRecycleBits = true;
 #endif
+
+// Address 255: MSTs and telegrams to all drives (sercos-facts §2), the one address the
+// receiver, the decode and the telegram list single out.
+inline constexpr std::uint8_t kAddress255 = 0xFF;
 
 // The frames a receiver finds in one burst. Bit positions count from the burst's first bit.
 struct BurstDecode {
