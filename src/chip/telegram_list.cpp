@@ -78,11 +78,6 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
 [[gnu::flatten]] void TelegramList::walk(std::uint16_t address) {
   for (;;) {
     read_item(address, item_);
-    // A receive header without TCHK just waits: no call (half the items a ring's lists hold).
-    if (item_.kind == Kind::Receive && !item_.has(telegram::kTchk)) {
-      wait_for(item_);
-      return;
-    }
     if (arm(item_) || item_.kind == Kind::EndMarker) return;
     address = item_.next;
   }
