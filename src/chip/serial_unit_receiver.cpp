@@ -368,6 +368,9 @@ void SerialReceiver::plan_by_walk(sim::Time now) {
 
 void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
+  if (report_event_.value == 0 && e.frames.size() == 1 && on_start_ && on_telegram_) {
+    return consider_one(e);  // the usual read: one frame, nothing planned
+  }
   const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
   if (planned <= e.segment.since) return;  // its reports all come after the planned one
   const sim::Time now = scheduler_.now();
@@ -378,6 +381,29 @@ void SerialReceiver::consider(Entry& e) {
   report_ = best;
   report_event_ = scheduler_.at(
       best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+}
+
+// What scan() finds for a fresh entry of one frame with nothing planned and both handlers:
+// the frame starts at or after now (announce() refuses the past), so neither of its reports
+// is past; the start report is taken when wanted and the address is whole, else the
+// detection when wanted.
+inline void SerialReceiver::consider_one(Entry& e) {
+  FrameState& st = e.frames[0];
+  const wire::DecodedFrame& f = e.decode->frames[0];
+  if (wants_start(st.start, f.address)) {
+    work_out_reports(e, 0);
+    if (st.start_report != kNever) return plan_first(Report{st.start_report, e.serial, 0, false});
+    st.start_done = true;  // no whole address: never comes
+  }
+  if (!wants_telegram(st.start, f)) return;
+  plan_first(Report{with_reports(e, 0).telegram_report, e.serial, 0, true});
+}
+
+// The report event, when none is pending.
+inline void SerialReceiver::plan_first(const Report& r) {
+  report_ = r;
+  report_event_ = scheduler_.at(
+      r.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
 }
 
 void SerialReceiver::fire_report() {

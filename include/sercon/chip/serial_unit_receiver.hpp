@@ -279,6 +279,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
   void consider(Entry& e);
+  inline void consider_one(Entry& e);
+  inline void plan_first(const Report& r);
   // The earliest report of e's frames the processor wants, if before best.when, into best.
   // fresh: e was just taken (none of its report times is known yet).
   void scan(Entry& e, sim::Time now, Report& best, bool fresh);
