@@ -192,7 +192,10 @@ void SerialReceiver::cut(Entry& e, sim::Time at) {
   }
 }
 
-void SerialReceiver::work_out_reports(Entry& e, std::size_t i) const {
+void SerialReceiver::work_out_reports(Entry& e, std::size_t i) const { reports_of(e, i); }
+
+// Inline in consider_one(), which works them out for nearly every frame read.
+inline void SerialReceiver::reports_of(Entry& e, std::size_t i) const {
   FrameState& st = e.frames[i];
   const sim::Time since = e.segment.since, period = e.segment.period;
   const std::size_t address_end = e.decode->address_end[i];
@@ -391,12 +394,13 @@ inline void SerialReceiver::consider_one(Entry& e) {
   FrameState& st = e.frames[0];
   const wire::DecodedFrame& f = e.decode->frames[0];
   if (wants_start(st.start, f.address)) {
-    work_out_reports(e, 0);
+    reports_of(e, 0);
     if (st.start_report != kNever) return plan_first(Report{st.start_report, e.serial, 0, false});
     st.start_done = true;  // no whole address: never comes
   }
   if (!wants_telegram(st.start, f)) return;
-  plan_first(Report{with_reports(e, 0).telegram_report, e.serial, 0, true});
+  if (!st.reports_known) reports_of(e, 0);
+  plan_first(Report{st.telegram_report, e.serial, 0, true});
 }
 
 // The report event, when none is pending.

@@ -251,6 +251,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     return st;
   }
   void work_out_reports(Entry& e, std::size_t frame) const;
+  inline void reports_of(Entry& e, std::size_t frame) const;  // what work_out_reports() does
   // Both of the frame's reports are past at `now`, known without working them out.
   bool surely_over(const Entry& e, const FrameState& st, sim::Time now) const {
     return !st.reports_known && st.end + report_lag(e.segment.period) < now;
