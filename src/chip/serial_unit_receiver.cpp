@@ -365,8 +365,7 @@ void SerialReceiver::plan_by_walk(sim::Time now) {
   report_event_ = {};
   report_ = best;
   if (best.when == kNever) return;
-  report_event_ = scheduler_.at(
-      best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+  arm(best);
 }
 
 void SerialReceiver::consider(Entry& e) {
@@ -381,9 +380,7 @@ void SerialReceiver::consider(Entry& e) {
   scan(e, now, best, true);
   if (best.serial == 0) return;  // the planned report stays the earliest
   scheduler_.cancel(report_event_);
-  report_ = best;
-  report_event_ = scheduler_.at(
-      best.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+  arm(best);
 }
 
 // What scan() finds for a fresh entry of one frame with nothing planned and both handlers:
@@ -395,33 +392,39 @@ inline void SerialReceiver::consider_one(Entry& e) {
   const wire::DecodedFrame& f = e.decode->frames[0];
   if (wants_start(st.start, f.address)) {
     reports_of(e, 0);
-    if (st.start_report != kNever) return plan_first(Report{st.start_report, e.serial, 0, false});
+    if (st.start_report != kNever) return arm(Report{st.start_report, e.serial, 0, false});
     st.start_done = true;  // no whole address: never comes
   }
   if (!wants_telegram(st.start, f)) return;
   if (!st.reports_known) reports_of(e, 0);
-  plan_first(Report{st.telegram_report, e.serial, 0, true});
+  arm(Report{st.telegram_report, e.serial, 0, true});
 }
 
-// The report event, when none is pending.
-inline void SerialReceiver::plan_first(const Report& r) {
+// The report event for `r`, none pending; an action of its own per kind of report.
+inline void SerialReceiver::arm(const Report& r) {
   report_ = r;
-  report_event_ = scheduler_.at(
-      r.when, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+  const sim::Scheduler::Action fire =
+      r.telegram ? [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<true>(); }
+                 : [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<false>(); };
+  report_event_ = scheduler_.at(r.when, fire, this);
 }
 
+template <bool kTelegram>
 void SerialReceiver::fire_report() {
   report_event_ = {};
   const Report r = report_;
   Entry* e = find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
-  const SharedBits keep = e->segment.bits;  // the handler may prune the entry
+  const std::size_t index = static_cast<std::size_t>(e - timeline_.data());
   const wire::DecodedFrame& f = e->decode->frames[r.frame];
   FrameState& st = e->frames[r.frame];
   const sim::Time start = st.start;
-  if (r.telegram) {
+  if constexpr (kTelegram) {
     st.end_done = true;
-    on_telegram_(ReceivedTelegram{start, st.end, r.when, e->segment.period, f});
+    {
+      const Firing firing(*this, r.serial);
+      on_telegram_(ReceivedTelegram{start, st.end, r.when, e->segment.period, f});
+    }
     if (nothing_after_detection(r)) {  // what plan_reports() would find, without the walk
       refresh_interest();
       report_ = Report{kNever, 0, 0, false};
@@ -429,9 +432,12 @@ void SerialReceiver::fire_report() {
     }
   } else {
     st.start_done = true;
-    on_start_(start, f.address);
+    {
+      const Firing firing(*this, r.serial);
+      on_start_(start, f.address);
+    }
     refresh_interest();
-    if (plan_telegram_after_start(r)) return;
+    if (plan_telegram_after_start(r, index)) return;
   }
   plan_reports();
 }
@@ -459,18 +465,19 @@ inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
 // frame's start (frames do not overlap, and the pipeline keeps their order), every other
 // report of this entry or a later one (the lazy bursts too) after its end. So it is
 // planned without the walk, as plan_reports() would plan it; otherwise the walk decides.
-inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
+inline bool SerialReceiver::plan_telegram_after_start(const Report& fired, std::size_t index) {
   if (!on_telegram_ || !unit_.running()) return false;
-  Entry* e = find(fired.serial);  // again: the handler may have pruned or added entries
+  // Again: the handler may have added entries (the vector may have moved).
+  Entry* e = index < timeline_.size() && timeline_[index].serial == fired.serial
+                 ? &timeline_[index]
+                 : find(fired.serial);
   if (e == nullptr || !e->decode || fired.frame >= e->frames.size()) return false;
   FrameState& st = e->frames[fired.frame];
   if (st.end_done) return false;
   if (!wants_telegram(st.start, e->decode->frames[fired.frame])) return false;
   const sim::Time t = with_reports(*e, fired.frame).telegram_report;
   if (t < scheduler_.now() || t == kNever || report_event_.value != 0) return false;
-  report_ = Report{t, fired.serial, fired.frame, true};
-  report_event_ = scheduler_.at(
-      t, [](void* self) { static_cast<SerialReceiver*>(self)->fire_report(); }, this);
+  arm(Report{t, fired.serial, fired.frame, true});
   return true;
 }
 

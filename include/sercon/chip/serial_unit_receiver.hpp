@@ -281,14 +281,16 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // planned?
   void consider(Entry& e);
   inline void consider_one(Entry& e);
-  inline void plan_first(const Report& r);
+  inline void arm(const Report& r);
   // The earliest report of e's frames the processor wants, if before best.when, into best.
   // fresh: e was just taken (none of its report times is known yet).
   void scan(Entry& e, sim::Time now, Report& best, bool fresh);
   bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
                  sim::Time before);
+  template <bool kTelegram>  // the detection; false: the start report
   void fire_report();
-  inline bool plan_telegram_after_start(const Report& fired);      // true: planned
+  // true: planned; `index`: where the fired entry was before the handler
+  inline bool plan_telegram_after_start(const Report& fired, std::size_t index);
   inline bool nothing_after_detection(const Report& fired) const;  // a plan would find none
   void plan_monitor();
   void fire_monitor();
@@ -333,6 +335,17 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
   Report report_{};
+  // The entry whose report's handler runs: prune() keeps it (and so its bits, which the
+  // frame handed to the handler lives in) until the handler returns.
+  static constexpr std::uint64_t kNoSerial = UINT64_MAX;
+  std::uint64_t firing_ = kNoSerial;
+  struct Firing {
+    Firing(SerialReceiver& r, std::uint64_t serial) : receiver(r) { r.firing_ = serial; }
+    ~Firing() { receiver.firing_ = kNoSerial; }
+    Firing(const Firing&) = delete;
+    Firing& operator=(const Firing&) = delete;
+    SerialReceiver& receiver;
+  };
   sim::Scheduler::EventId report_event_{};
   sim::Scheduler::EventId monitor_event_{};
   // Forwards put off because the chain of announcements was too deep (a ring where every

@@ -74,7 +74,7 @@ inline void SerialReceiver::prune() {
   const sim::Time now = scheduler_.now();
   while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
     Entry& e = timeline_.front();
-    if (e.serial == report_.serial && report_event_.value != 0) return;
+    if ((e.serial == report_.serial && report_event_.value != 0) || e.serial == firing_) return;
     // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
     // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
     if (!e.frames.empty()) {
