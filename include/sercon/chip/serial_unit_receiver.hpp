@@ -140,6 +140,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
       }
       size_ = static_cast<std::uint32_t>(n);
     }
+    // One frame state, `st` (reset(1) with it written in).
+    void set_one(const FrameState& st) {
+      inline_[0] = st;
+      size_ = 1;
+    }
     // The first min(size(), n) stay as they are; the others are new.
     void resize(std::size_t n) {
       if (n > kInline) {

@@ -49,11 +49,20 @@ inline void SerialReceiver::take(Entry& e) {
     e.frames.clear();
     return;
   }
-  e.decode =
+  const BurstDecode& d =
       s.burst_end() == e.cut
-          ? &decode_burst(s.bits)
-          : &decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
-  e.frames.reset(e.decode->frames.size());
+          ? decode_burst(s.bits)
+          : decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
+  e.decode = &d;
+  if (d.frames.size() == 1) {  // the usual burst, one telegram: what work_out() makes of it
+    const wire::DecodedFrame& f = d.frames[0];
+    e.frames.set_one(
+        FrameState{s.since + static_cast<sim::Time>(f.start_bit) * s.period,
+                   std::min(s.since + static_cast<sim::Time>(f.end_bit) * s.period, e.cut), 0, 0,
+                   false, false, false});
+    return;
+  }
+  e.frames.reset(d.frames.size());
   work_out(e, 0);
 }
 
