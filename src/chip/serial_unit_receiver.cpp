@@ -368,11 +368,16 @@ void SerialReceiver::plan_by_walk(sim::Time now) {
   arm(best);
 }
 
-void SerialReceiver::consider(Entry& e) {
+// Inline in announce(): the usual read takes consider_one() without a call.
+inline void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
   if (report_event_.value == 0 && e.frames.size() == 1 && on_start_ && on_telegram_) {
     return consider_one(e);  // the usual read: one frame, nothing planned
   }
+  consider_more(e);
+}
+
+void SerialReceiver::consider_more(Entry& e) {
   const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
   if (planned <= e.segment.since) return;  // its reports all come after the planned one
   const sim::Time now = scheduler_.now();

@@ -284,8 +284,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   bool lazy_report_due(sim::Time now) const;  // lazy_ not empty: a plan must absorb it first
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
-  void consider(Entry& e);
-  inline void consider_one(Entry& e);
+  inline void consider(Entry& e);
+  inline void consider_one(Entry& e);              // one frame, nothing planned, both handlers
+  [[gnu::noinline]] void consider_more(Entry& e);  // the others
   inline void arm(const Report& r);
   // The earliest report of e's frames the processor wants, if before best.when, into best.
   // fresh: e was just taken (none of its report times is known yet).

@@ -94,6 +94,11 @@ inline void SerialReceiver::prune() {
         return;
       }
     }
+    if (timeline_.size() == 2) {  // mostly: the one after it moves to the front
+      e = std::move(timeline_.back());
+      timeline_.pop_back();
+      return;
+    }
     timeline_.erase(timeline_.begin());
   }
 }
