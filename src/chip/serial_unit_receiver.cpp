@@ -106,15 +106,16 @@ void SerialReceiver::announce(RxdSegment&& segment) {
   }
   Entry& e = append(std::move(segment));
   if (!unit_.running()) return;
-  take(e);
+  take(e, true);
   if (changed) {
     plan_reports();
   } else {
     consider(e);
   }
-  // Between good signals (the usual case) the monitor has nothing to hear.
-  const bool quiet =
-      timeline_.size() > 1 && good(timeline_[timeline_.size() - 2].segment) && good(e.segment);
+  // Between good signals (the usual case) the monitor has nothing to hear. A burst taken is
+  // one at the receiver's rate.
+  const bool quiet = timeline_.size() > 1 && good(timeline_[timeline_.size() - 2].segment) &&
+                     (e.decode != nullptr || good(e.segment));
   if (changed || !quiet || at == now) plan_monitor();
   recactn_.replan();
   pass_to_repeater(e);

@@ -243,7 +243,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void forward_deferred(std::uint64_t serial);
   bool supersede(sim::Time at);  // true when something announced before was changed
   void cut(Entry& entry, sim::Time at);
-  void take(Entry& entry);  // decode if this chip receives it
+  // Decode if this chip receives it. `appended`: just appended, so not cut (cut is its end).
+  void take(Entry& entry, bool appended = false);
   void prune();
   std::size_t in_force(sim::Time t) const;  // index of the entry in force at t
   Entry* find(std::uint64_t serial);

@@ -42,7 +42,7 @@ inline SerialReceiver::Entry& SerialReceiver::append(RxdSegment&& segment) {
   return timeline_.emplace_back(std::move(segment), cut, next_serial_++);
 }
 
-inline void SerialReceiver::take(Entry& e) {
+inline void SerialReceiver::take(Entry& e, bool appended) {
   e.decode = nullptr;
   const RxdSegment& s = e.segment;
   if (!s.is_burst || s.period != unit_.bit_period()) {  // distorted: the monitor counts it
@@ -50,7 +50,7 @@ inline void SerialReceiver::take(Entry& e) {
     return;
   }
   const BurstDecode& d =
-      s.burst_end() == e.cut
+      appended || s.burst_end() == e.cut
           ? decode_burst(s.bits)
           : decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
   e.decode = &d;
