@@ -24,7 +24,7 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
   }
   if (try_lazy_hop(burst)) return;
   absorb_lazy();
-  announce(RxdSegment::of(burst));
+  announce(burst);
 }
 
 // --- lazy hops ------------------------------------------------------------------------------

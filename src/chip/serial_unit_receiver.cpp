@@ -86,8 +86,20 @@ void SerialReceiver::line_condition(sim::Time at, LineCondition condition, sim::
 }
 
 void SerialReceiver::announce(RxdSegment&& segment) {
+  announce_at(segment.since, [&]() -> Entry& { return append(std::move(segment)); });
+}
+
+// A burst: its entry is built from it in place (a read at every telegram a node reads).
+void SerialReceiver::announce(const LineBurst& burst) {
+  announce_at(burst.start, [&]() -> Entry& {
+    return timeline_.emplace_back(burst, burst.end(), next_serial_++);
+  });
+}
+
+// `add` appends the change at `at` to the timeline and returns its entry.
+template <class Add>
+inline void SerialReceiver::announce_at(sim::Time at, Add&& add) {
   const sim::Time now = scheduler_.now();
-  const sim::Time at = segment.since;
   if (at < now) {
     throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
                                 std::to_string(now) + " ps)");
@@ -104,7 +116,7 @@ void SerialReceiver::announce(RxdSegment&& segment) {
         " ps: telegrams circle a ring where every node repeats (REPON on everywhere, the "
         "master too); switch one repeater off, as Ring::switch_on_lines does for the master");
   }
-  Entry& e = append(std::move(segment));
+  Entry& e = add();
   if (!unit_.running()) return;
   take(e, true);
   if (changed) {

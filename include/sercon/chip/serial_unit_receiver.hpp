@@ -112,6 +112,14 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
       return *this;
     }
     FrameStates& operator=(FrameStates&& other) noexcept {
+      // The usual: states inline on both sides, or none (kInline == 1, copy_inline()).
+      if (!more_ && !other.more_) {
+        const std::uint32_t size = other.size_;
+        other.size_ = 0;
+        size_ = size;
+        if (size > 0) inline_[0] = other.inline_[0];
+        return *this;
+      }
       if (this != &other) {
         more_ = std::move(other.more_);
         size_ = other.size_;
@@ -177,6 +185,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     // User-provided: value-initialising the aggregate cleared all of it first.
     Entry(RxdSegment&& s, sim::Time c, std::uint64_t n)
         : segment(std::move(s)), cut(c), serial(n) {}
+    Entry(const LineBurst& b, sim::Time c, std::uint64_t n)
+        : segment{true, LineCondition::Idle, b.start, b.bit_period, b.bits}, cut(c), serial(n) {}
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
@@ -192,6 +202,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   };
 
   void announce(RxdSegment&& segment);
+  void announce(const LineBurst& burst);
+  template <class Add>  // what both share
+  inline void announce_at(sim::Time at, Add&& add);
   Entry& append(RxdSegment&& segment);
   // true: passed on lazily. Inline in line_burst(), as drop_lazy_over() in it: a call less
   // per hop of a lazy chain.
