@@ -33,7 +33,12 @@ MclkGrid::MclkGrid(std::int64_t hz) : hz_(hz) {
   by_den_ = sim::Reciprocal(den_);
   std::uint64_t bound;
   narrow_ = !__builtin_mul_overflow(num_ + 1, den_, &bound);
-  if (num_ == 1) exact_edges_ = static_cast<std::uint64_t>(INT64_MAX) / den_;
+  if (num_ == 1) {
+    exact_edges_ = static_cast<std::uint64_t>(INT64_MAX) / den_;
+    // t <= (exact_edges_ - kFewEdges - 1) * b: the first edge at or after t, plus kFewEdges,
+    // is at most exact_edges_.
+    exact_limit_ = (exact_edges_ - static_cast<std::uint64_t>(kFewEdges) - 1) * den_;
+  }
 }
 
 MclkGrid MclkGrid::of_period(sim::Time period) {

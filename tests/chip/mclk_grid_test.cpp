@@ -218,5 +218,36 @@ TEST(MclkGrid, FastPathMatchesThe128BitFormula) {
   }
 }
 
+// nth_edge_after's fast path (an exact grid, a time not too late, a few edges) gives what
+// the general formula gives: the n-th edge after the first at or after t.
+TEST(MclkGrid, NthEdgeAfterMatchesTheGeneralFormula) {
+  const std::vector<std::int64_t> clocks{16'000'000, 32'000'000,   64'000'000, 33'000'000,
+                                         1,          sim::kSecond, 244'140'625};
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  const std::vector<std::int64_t> counts{
+      0, 1, 3, 4, MclkGrid::kFewEdges - 1, MclkGrid::kFewEdges, MclkGrid::kFewEdges + 1, -1};
+  for (const std::int64_t hz : clocks) {
+    const MclkGrid grid(hz);
+    std::vector<Time> times{0, 1, 2, -1, kMax, kMax - 1, std::int64_t{1} << 62};
+    const auto around = [&times](Time at) {  // the edge at `at` and both sides of it
+      times.insert(times.end(), {at - 1, at});
+      if (at < kMax) times.push_back(at + 1);
+    };
+    for (std::int64_t k : {std::int64_t{1}, std::int64_t{1000}, kMax / sim::kSecond}) {
+      around(grid.time_of(k));
+    }
+    // Around the end of the fast path, for every grid: the last edges that fit 64 bits.
+    const std::int64_t last = grid.last_at_or_before(kMax);
+    for (std::int64_t i = MclkGrid::kFewEdges + 3; i >= 0; --i) around(grid.time_of(last - i));
+    for (const Time t : times) {
+      const std::int64_t first = grid.first_at_or_after(t);
+      for (const std::int64_t n : counts) {
+        if (n > 0 && first > last - n) continue;  // the n-th edge does not fit 64 bits
+        ASSERT_EQ(grid.nth_edge_after(t, n), grid.time_of(first + n)) << hz << " " << t << " " << n;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sercon::chip

@@ -39,7 +39,17 @@ class MclkGrid {
   Edge last_at_or_before(sim::Time t) const;  // -1 for t < 0
   // The `n`-th edge after the first at or after t: where a synchroniser of n flip-flops
   // takes up what came at t (a receiver's report, a slave's MST load, CYC_CLK).
-  sim::Time nth_edge_after(sim::Time t, Edge n) const { return time_of(first_at_or_after(t) + n); }
+  // 0 <= n <= kFewEdges on an exact grid (the usual one) takes one multiply for the division.
+  static constexpr Edge kFewEdges = 64;
+  sim::Time nth_edge_after(sim::Time t, Edge n) const {
+    // 0 < t <= exact_limit_: the edge is within exact_edges_, at edge * b.
+    if (static_cast<std::uint64_t>(t - 1) < exact_limit_ && n >= 0 && n <= kFewEdges) {
+      const auto u = static_cast<std::uint64_t>(t);
+      const QuotRem d = by_den(u);
+      return static_cast<sim::Time>((d.quot + (d.rem != 0) + static_cast<std::uint64_t>(n)) * den_);
+    }
+    return time_of(first_at_or_after(t) + n);
+  }
 
  private:
   // floor(u / den_) and its remainder by a multiply with the reciprocal (sim::Reciprocal):
@@ -66,6 +76,8 @@ class MclkGrid {
   // Edges 0..exact_edges_ are at edge * b exactly: a == 1 and the product fits (else 0:
   // edge 0 at 0 holds for every grid).
   std::uint64_t exact_edges_ = 0;
+  // nth_edge_after's fast path holds for 0 < t <= exact_limit_ (0: never, not exact).
+  std::uint64_t exact_limit_ = 0;
 };
 
 // Inline: the simulation asks for edges on nearly every event.
