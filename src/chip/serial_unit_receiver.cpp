@@ -96,26 +96,30 @@ void SerialReceiver::announce(const LineBurst& burst) {
   });
 }
 
+void SerialReceiver::refuse_past(sim::Time at, sim::Time now) {
+  throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
+                              std::to_string(now) + " ps)");
+}
+
+void SerialReceiver::refuse_more(sim::Time now) const {
+  throw sim::ModelLimit(
+      "RxD: " + std::to_string(timeline_.size()) + " changes announced ahead at " +
+      std::to_string(now) +
+      " ps: telegrams circle a ring where every node repeats (REPON on everywhere, the "
+      "master too); switch one repeater off, as Ring::switch_on_lines does for the master");
+}
+
 // `add` appends the change at `at` to the timeline and returns its entry.
 template <class Add>
 inline void SerialReceiver::announce_at(sim::Time at, Add&& add) {
   const sim::Time now = scheduler_.now();
-  if (at < now) {
-    throw std::invalid_argument("RxD: a change at " + std::to_string(at) + " ps is before now (" +
-                                std::to_string(now) + " ps)");
-  }
+  if (at < now) refuse_past(at, now);
   // Mostly a change after everything announced before: nothing to drop or cut.
   const Entry& last = timeline_.back();
   const bool changed =
       (last.segment.since >= at || (last.segment.is_burst && at < last.cut)) && supersede(at);
   prune();
-  if (timeline_.size() >= kMaxTimeline) {
-    throw sim::ModelLimit(
-        "RxD: " + std::to_string(timeline_.size()) + " changes announced ahead at " +
-        std::to_string(now) +
-        " ps: telegrams circle a ring where every node repeats (REPON on everywhere, the "
-        "master too); switch one repeater off, as Ring::switch_on_lines does for the master");
-  }
+  if (timeline_.size() >= kMaxTimeline) refuse_more(now);
   Entry& e = add();
   if (!unit_.running()) return;
   take(e, true);

@@ -205,6 +205,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void announce(const LineBurst& burst);
   template <class Add>  // what both share
   inline void announce_at(sim::Time at, Add&& add);
+  // Out of line, so announce_at() carries no message building.
+  [[noreturn, gnu::cold, gnu::noinline]] static void refuse_past(sim::Time at, sim::Time now);
+  [[noreturn, gnu::cold, gnu::noinline]] void refuse_more(sim::Time now) const;
   Entry& append(RxdSegment&& segment);
   // true: passed on lazily. Inline in line_burst(), as drop_lazy_over() in it: a call less
   // per hop of a lazy chain.

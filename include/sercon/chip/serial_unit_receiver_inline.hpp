@@ -20,6 +20,12 @@ constexpr sim::Time kNever = LazyPin::kNever;
 constexpr int kMaxChain = 600;
 inline thread_local int chain_depth = 0;  // receivers in the chain now
 
+// five_and_a_half_bits() of a burst's period (> 0), in unsigned arithmetic: the same value
+// without the correction a signed division makes for negative numbers.
+inline sim::Time burst_half_bits(sim::Time period) {
+  return static_cast<sim::Time>((11 * static_cast<std::uint64_t>(period) + 1) / 2);
+}
+
 }  // namespace sercon::chip::receiver_detail
 
 namespace sercon::chip {
@@ -31,7 +37,7 @@ inline sim::Time SerialReceiver::report_lag(sim::Time period) const {
 }
 
 inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
-  const sim::Time half_bits = five_and_a_half_bits(period);
+  const sim::Time half_bits = receiver_detail::burst_half_bits(period);
   // kDetectionEdges MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
   return mclk_.nth_edge_after(t + half_bits, kDetectionEdges);
 }
