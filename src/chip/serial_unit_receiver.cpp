@@ -435,7 +435,8 @@ template <bool kTelegram>
 void SerialReceiver::fire_report() {
   report_event_ = {};
   const Report r = report_;
-  Entry* e = find(r.serial);
+  // Mostly of the last entry (a burst read fires its reports before the next one comes).
+  Entry* e = timeline_.back().serial == r.serial ? &timeline_.back() : find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
   const std::size_t index = static_cast<std::size_t>(e - timeline_.data());
   const wire::DecodedFrame& f = e->decode->frames[r.frame];
