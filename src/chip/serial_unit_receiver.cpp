@@ -358,10 +358,7 @@ void SerialReceiver::plan_reports() {
   const sim::Time now = scheduler_.now();
   // Mostly (a change in what the processor waits for) every report is past: what the walk
   // would find, without it.
-  if (lazy_.empty() && report_event_.value == 0 && all_past(now)) {
-    report_ = Report{kNever, 0, 0, false};
-    return;
-  }
+  if (lazy_.empty() && report_event_.value == 0 && all_past(now)) return;
   plan_by_walk(now);
 }
 
@@ -438,7 +435,6 @@ void SerialReceiver::fire_report() {
   // Mostly of the last entry (a burst read fires its reports before the next one comes).
   Entry* e = timeline_.back().serial == r.serial ? &timeline_.back() : find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
-  const std::size_t index = static_cast<std::size_t>(e - timeline_.data());
   const wire::DecodedFrame& f = e->decode->frames[r.frame];
   FrameState& st = e->frames[r.frame];
   const sim::Time start = st.start;
@@ -450,7 +446,6 @@ void SerialReceiver::fire_report() {
     }
     if (nothing_after_detection(r)) {  // what plan_reports() would find, without the walk
       refresh_interest();
-      report_ = Report{kNever, 0, 0, false};
       return;
     }
   } else {
@@ -460,7 +455,7 @@ void SerialReceiver::fire_report() {
       on_start_(start, f.address);
     }
     refresh_interest();
-    if (plan_telegram_after_start(r, index)) return;
+    if (plan_telegram_after_start(r)) return;
   }
   plan_reports();
 }
@@ -488,12 +483,10 @@ inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
 // frame's start (frames do not overlap, and the pipeline keeps their order), every other
 // report of this entry or a later one (the lazy bursts too) after its end. So it is
 // planned without the walk, as plan_reports() would plan it; otherwise the walk decides.
-inline bool SerialReceiver::plan_telegram_after_start(const Report& fired, std::size_t index) {
+inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
   if (!on_telegram_ || !unit_.running()) return false;
-  // Again: the handler may have added entries (the vector may have moved).
-  Entry* e = index < timeline_.size() && timeline_[index].serial == fired.serial
-                 ? &timeline_[index]
-                 : find(fired.serial);
+  // Again: the handler may have added entries (the vector may have moved). Mostly the last.
+  Entry* e = timeline_.back().serial == fired.serial ? &timeline_.back() : find(fired.serial);
   if (e == nullptr || !e->decode || fired.frame >= e->frames.size()) return false;
   FrameState& st = e->frames[fired.frame];
   if (st.end_done) return false;

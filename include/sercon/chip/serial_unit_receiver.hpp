@@ -312,8 +312,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
                  sim::Time before);
   template <bool kTelegram>  // the detection; false: the start report
   void fire_report();
-  // true: planned; `index`: where the fired entry was before the handler
-  inline bool plan_telegram_after_start(const Report& fired, std::size_t index);
+  inline bool plan_telegram_after_start(const Report& fired);      // true: planned
   inline bool nothing_after_detection(const Report& fired) const;  // a plan would find none
   void plan_monitor();
   void fire_monitor();
@@ -357,7 +356,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
-  Report report_{};
+  Report report_{};                 // the planned report: read only while report_event_ is pending
   // The entry whose report's handler runs: prune() keeps it (and so its bits, which the
   // frame handed to the handler lives in) until the handler returns.
   static constexpr std::uint64_t kNoSerial = UINT64_MAX;
