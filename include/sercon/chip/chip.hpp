@@ -157,6 +157,14 @@ class Chip {
       marks_.mark_run(first, words.size(), [&](std::size_t i) { to[i] = words[i]; });
       accesses_ += words.size();
     }
+    // The words without a mark: for a caller that looks at a structure first and then
+    // marks what it read as one run (touch_run).
+    const std::uint16_t* words() const { return words_; }
+    // Words first .. first + count - 1 used now: marked and counted as read_run does.
+    void touch_run(std::uint16_t first, std::size_t count) const {
+      marks_.mark_run(first, count);
+      accesses_ += count;
+    }
     // write_run of `count` words given as little-endian byte pairs (a telegram's data as
     // it came off the line).
     void write_run_le(std::uint16_t first, const std::uint8_t* bytes, std::size_t count) const {

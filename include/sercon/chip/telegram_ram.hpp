@@ -60,6 +60,15 @@ class TelegramRam {
     in_ram(first, count,
            [&](std::size_t n) { port_.write_run_le(static_cast<std::uint16_t>(first), bytes, n); });
   }
+  // The RAM's words, read without a mark: for a caller that looks at a structure first and
+  // then marks what it read as one run (touch_run). Each word read must be < size().
+  const std::uint16_t* words() const { return port_.words(); }
+  // Words first .. first + count - 1 read now: marked and counted as read_run() does (and a
+  // ListFault likewise if the run reaches beyond the RAM).
+  void touch_run(std::uint32_t first, std::size_t count) {
+    in_ram(first, count,
+           [&](std::size_t n) { port_.touch_run(static_cast<std::uint16_t>(first), n); });
+  }
   // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
   void count_error(std::uint32_t word) {
     const std::uint16_t n = read(word);

@@ -29,6 +29,9 @@ class TransmitPath {
   std::span<const std::uint8_t> gather(const ListItem& item, bool val, ServiceChannelPort& port);
 
  private:
+  static constexpr std::size_t kNotARun = static_cast<std::size_t>(-1);
+  std::size_t gather_run(const ListItem& item);
+  std::size_t gather_containers(const ListItem& item, bool val, ServiceChannelPort& port);
   void take(bool dma, std::uint16_t control_word, std::uint32_t control, std::uint32_t buffer,
             std::size_t filled, ServiceChannelPort& port);
 
