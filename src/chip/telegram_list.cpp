@@ -50,6 +50,25 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
   if (++items_read_ > ram_.size() / 2u) throw_list_fault("list loops (no end marker reached)");
   item = ListItem{};
   item.address = address;
+  // Headers and end markers inside the RAM: looked at first, then their words (word 0 and
+  // TRT, TLEN, PT or TEND, read in order by the general path below) marked as one run.
+  if (address + telegram::kTransmitHeaderWords <= ram_.size()) {
+    const std::uint16_t* words = ram_.words() + address;
+    item.word0 = words[0];
+    item.kind = telegram::kind_of(item.word0);
+    item.time = words[telegram::kTimeWord];
+    if (item.kind == Kind::EndMarker) {
+      ram_.touch_run(address, telegram::kEndMarkerWords);
+      return;
+    }
+    if (item.kind != Kind::Invalid) {
+      item.length = words[telegram::kLengthWord];
+      item.next = telegram::pointer(words[telegram::kNextWord]);
+      ram_.touch_run(address, telegram::kTransmitHeaderWords);
+      return;
+    }
+    item.time = 0;
+  }
   item.word0 = ram_.read(address);
   item.kind = telegram::kind_of(item.word0);
   switch (item.kind) {
