@@ -93,7 +93,7 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
 // A loop, not recursion: a long list of late items must not grow the stack. Each item is
 // read straight into item_ (what it holds matters only while an item is armed).
 // Flattened: arm() and the time base's event inline (a call per item otherwise); so are
-// its four callers (start, fire_transmit, offer, taken), each of which walks once a cycle.
+// its four callers (start, fire_transmit, offer, walk_on_held), each walking once a cycle.
 [[gnu::flatten]] void TelegramList::walk(std::uint16_t address) {
   for (;;) {
     read_item(address, item_);
@@ -211,8 +211,7 @@ void TelegramList::fire_end() {
   return Match::Accepted;
 }
 
-[[gnu::flatten]] void TelegramList::taken(const ListItem& item) {
-  if (state_ != State::Held || item_.address != item.address) return;
+[[gnu::flatten]] void TelegramList::walk_on_held(const ListItem& item) {
   set_state(State::Idle);
   try {
     walk(item.next);

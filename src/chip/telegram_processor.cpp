@@ -71,8 +71,9 @@ void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
 // --- cycles -----------------------------------------------------------------------------
 
 void TelegramProcessor::on_cycle_start(const CycleStart& start) {
+  const bool is_master = master();  // REGMODE, read once: nothing below writes registers
   const bool own_kind =
-      master() ? start.kind == CycleKind::Master : start.kind != CycleKind::Master;
+      is_master ? start.kind == CycleKind::Master : start.kind != CycleKind::Master;
   if (!own_kind) return;
   if (start.kind == CycleKind::Substitute) {
     try {
@@ -86,7 +87,7 @@ void TelegramProcessor::on_cycle_start(const CycleStart& start) {
   // they depend on changes here). A slave's list starts with its AT: most cycle starts
   // change nothing.
   const bool waited = list_.waits_for_telegram();
-  list_.start(phase() <= 2 ? telegram::kCompt0 : telegram::kCompt1);
+  list_.start(phase(is_master) <= 2 ? telegram::kCompt0 : telegram::kCompt1);
   if (waited || list_.waits_for_telegram()) serial_.interest_changed();
 }
 
@@ -159,7 +160,7 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   }
   if (current) {
     const ListItem item = receiving_->item;
-    finish_receive(frame);
+    finish_receive(item, frame);
     list_.taken(item);  // an address-255 telegram held the walk at its header
   }
 }
@@ -190,8 +191,7 @@ void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time recogn
   cycle_control_.mst_detected(recognised);
 }
 
-void TelegramProcessor::finish_receive(const wire::DecodedFrame& frame) {
-  const ListItem item = receiving_->item;
+void TelegramProcessor::finish_receive(const ListItem& item, const wire::DecodedFrame& frame) {
   stop_receiving();
   ReceivePath::Outcome outcome;
   try {

@@ -50,9 +50,8 @@ ReceivePath::Outcome ReceivePath::finish(const ListItem& item, const wire::Decod
   const bool val = (word0 & kVal) != 0;
   // Storage tested as bits of word 0 (a Storage would be built in a register).
   const bool double_buffer = (item.word0 & (telegram::kDma | telegram::kDbuf)) == telegram::kDbuf;
-  // Double buffer: the data goes into the buffer VAL does not name.
-  outcome.service_work = store(item, double_buffer && !val, !error, port);
-
+  // Word 0 as it will be written back, worked out from the word 0 read now before the
+  // data goes in (fewer values kept across the stores).
   auto next = static_cast<std::uint16_t>(word0 & ~(kRerr | kVal));
   if (error) next |= kRerr;
   // Double buffer: VAL names the valid buffer and flips to the one just written when the
@@ -62,6 +61,8 @@ ReceivePath::Outcome ReceivePath::finish(const ListItem& item, const wire::Decod
   if (!item.has(telegram::kAchk)) {
     next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | frame.address);
   }
+  // Double buffer: the data goes into the buffer VAL does not name.
+  outcome.service_work = store(item, double_buffer && !val, !error, port);
   ram_.write(item.address, next);
   if (error) ram_.count_error(item.address + telegram::kNerrWord);
   return outcome;

@@ -82,7 +82,10 @@ class TelegramList {
   Match offer(sim::Time start, std::uint8_t address, ListItem& item);
   // An accepted address-255 telegram proved to be a list telegram at its detection: the walk
   // moves on past `item`. Nothing if the walk is no longer held there (a new cycle, a fault).
-  void taken(const ListItem& item);
+  // Inline: only an address-255 telegram holds the walk, most telegrams leave at once.
+  void taken(const ListItem& item) {
+    if (state_ == State::Held && item_.address == item.address) walk_on_held(item);
+  }
   // What offer() would answer now, without taking the telegram. Inline: the receiver asks
   // at every telegram start.
   Match would_take(sim::Time start, std::uint8_t address) const {
@@ -110,6 +113,7 @@ class TelegramList {
   enum class State : std::uint8_t { Idle, Transmit, Receive, Held, End };
 
   void walk(std::uint16_t address);
+  void walk_on_held(const ListItem& item);  // taken(): past the held header
   void walk_from(const ListItem& first);
   bool arm(const ListItem& item);  // false: the item is already over, walk on
   bool arm_receive(const ListItem& item);

@@ -58,15 +58,17 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   };
 
   bool master() const { return regmode_.on(regs_); }
-  std::uint8_t phase() const {
-    return static_cast<std::uint8_t>((master() ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
+  // The phase: PHAS0 (the byte a master sends) in master mode, PHASR (the byte of the last
+  // MST received) in slave mode; `is_master` is master(), read by the caller.
+  std::uint8_t phase(bool is_master) const {
+    return static_cast<std::uint8_t>((is_master ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
   }
   // Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it. The
   // chip tells phases apart only as 0..2 and 3..7 (COMPT0/1, TSCYC0/1), and a drive must not
   // send at all in CP0 (facts §2), so the gate holds in phase 0 too
   // (docs/telegram-processing.md). A slave in CP0..2: FLMDTADR gates the ATs. Both inline:
   // asked at every telegram start and list transmission.
-  bool address_flag_phase() const { return !master() && phase() <= 2; }
+  bool address_flag_phase() const { return !master() && phase(false) <= 2; }
   ServiceChannelPort& port() { return *port_; }
   void stop_receiving() {
     receiving_.reset();
@@ -82,7 +84,8 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   // a telegram's start and its detection are one call each from the serial unit.
   inline void offer(sim::Time start, std::uint8_t address);
   void withdraw_mst();
-  inline void finish_receive(const wire::DecodedFrame& frame);
+  // `item`: the header receiving_ held (a copy: stop_receiving() clears it).
+  inline void finish_receive(const ListItem& item, const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
   // Scheduler actions (function + context: no std::function per telegram).
   static void transmission_ended(void* processor);

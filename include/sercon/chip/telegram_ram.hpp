@@ -43,6 +43,16 @@ class TelegramRam {
     check(word);
     port_.write(static_cast<std::uint16_t>(word), value);
   }
+  // read(word) and then write(word, change(value read)), with one bounds check; returns the
+  // value read.
+  template <class Change>
+  std::uint16_t update(std::uint32_t word, Change change) {
+    check(word);
+    const auto at = static_cast<std::uint16_t>(word);
+    const std::uint16_t value = port_.read(at);
+    port_.write(at, change(value));
+    return value;
+  }
   // Words first .. first + out.size() - 1, as one read() each: the words inside the RAM
   // are read (and marked for BUSYN), then a ListFault if the run reaches beyond it.
   void read_run(std::uint32_t first, std::span<std::uint16_t> out) {

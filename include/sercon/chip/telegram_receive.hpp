@@ -33,8 +33,9 @@ class ReceivePath {
   bool begin(const ListItem& item) {
     // Double buffer without DMA (Storage tested as bits of word 0).
     if ((item.word0 & (telegram::kDma | telegram::kDbuf)) == telegram::kDbuf) return false;
-    const std::uint16_t word0 = ram_.read(item.address);
-    ram_.write(item.address, static_cast<std::uint16_t>(word0 & ~telegram::kVal));
+    const std::uint16_t word0 = ram_.update(item.address, [](std::uint16_t w) {
+      return static_cast<std::uint16_t>(w & ~telegram::kVal);
+    });
     return (word0 & telegram::kVal) != 0;
   }
   // The telegram proved to be an MST: VAL back as before begin().
