@@ -93,7 +93,7 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
 // A loop, not recursion: a long list of late items must not grow the stack. Each item is
 // read straight into item_ (what it holds matters only while an item is armed).
 // Flattened: arm() and the time base's event inline (a call per item otherwise); so are
-// its four callers (start, fire_transmit, offer, walk_on_held), each walking once a cycle.
+// its callers start, fire_transmit and walk_past (offer, taken), each walking once a cycle.
 [[gnu::flatten]] void TelegramList::walk(std::uint16_t address) {
   for (;;) {
     read_item(address, item_);
@@ -190,28 +190,8 @@ void TelegramList::fire_end() {
   client_.end_reached(item_);
 }
 
-[[gnu::flatten]] TelegramList::Match TelegramList::offer(sim::Time start, std::uint8_t address,
-                                                         ListItem& item) {
-  const Match match = would_take(start, address);
-  if (match != Match::Accepted) return match;
-  item = item_;
-  cancel_event();
-  // Doc §2: the walk reaches the items behind a receive header only once it is served; an
-  // address-255 telegram may still prove to be an MST, which serves no header (§3).
-  if (address == kAddress255) {
-    set_state(State::Held);
-    return Match::Accepted;
-  }
-  set_state(State::Idle);
-  try {
-    walk(item.next);
-  } catch (const ListFault& f) {
-    fault(f);
-  }
-  return Match::Accepted;
-}
-
-[[gnu::flatten]] void TelegramList::walk_on_held(const ListItem& item) {
+// offer() and taken(): the header `item` is served, the walk goes on behind it.
+[[gnu::flatten]] void TelegramList::walk_past(const ListItem& item) {
   set_state(State::Idle);
   try {
     walk(item.next);

@@ -79,12 +79,26 @@ class TelegramList {
   // receive header's? Accepted: `item` is that header, and the walk has moved on, except
   // for address 255: that may be an MST (no list telegram), so the walk stays at the header
   // until the detection says (taken() or reclaim()).
-  Match offer(sim::Time start, std::uint8_t address, ListItem& item);
+  // Inline: the receiver's start report of every telegram a header waits for comes here.
+  Match offer(sim::Time start, std::uint8_t address, ListItem& item) {
+    const Match match = would_take(start, address);
+    if (match != Match::Accepted) return match;
+    item = item_;
+    cancel_event();
+    // Doc §2: the walk reaches the items behind a receive header only once it is served; an
+    // address-255 telegram may still prove to be an MST, which serves no header (§3).
+    if (address == kAddress255) {
+      set_state(State::Held);
+      return Match::Accepted;
+    }
+    walk_past(item);
+    return Match::Accepted;
+  }
   // An accepted address-255 telegram proved to be a list telegram at its detection: the walk
   // moves on past `item`. Nothing if the walk is no longer held there (a new cycle, a fault).
   // Inline: only an address-255 telegram holds the walk, most telegrams leave at once.
   void taken(const ListItem& item) {
-    if (state_ == State::Held && item_.address == item.address) walk_on_held(item);
+    if (state_ == State::Held && item_.address == item.address) walk_past(item);
   }
   // What offer() would answer now, without taking the telegram. Inline: the receiver asks
   // at every telegram start.
@@ -113,7 +127,7 @@ class TelegramList {
   enum class State : std::uint8_t { Idle, Transmit, Receive, Held, End };
 
   void walk(std::uint16_t address);
-  void walk_on_held(const ListItem& item);  // taken(): past the held header
+  void walk_past(const ListItem& item);  // offer(), taken(): `item` served, walk on
   void walk_from(const ListItem& first);
   bool arm(const ListItem& item);  // false: the item is already over, walk on
   bool arm_receive(const ListItem& item);
