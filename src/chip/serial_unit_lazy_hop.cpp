@@ -9,7 +9,6 @@
 #include "sercon/chip/serial_unit_receiver.hpp"
 #include "sercon/chip/serial_unit_receiver_inline.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
-#include "sercon/sim/scoped_count.hpp"
 
 namespace sercon::chip {
 
@@ -17,14 +16,34 @@ using receiver_detail::chain_depth;
 using receiver_detail::kMaxChain;
 
 void SerialReceiver::line_burst(const LineBurst& burst) {
-  if (!burst.bits) throw std::invalid_argument("RxD: a burst without bits");
-  if (burst.bit_period <= 0) {
-    throw std::invalid_argument("RxD: a burst with bit period " + std::to_string(burst.bit_period) +
-                                " ps");
+  // A chain of lazy hops goes on here from receiver to receiver, one turn per hop (a call
+  // per hop cost as much as the hop's checks), counted in chain_depth as the calls were.
+  struct Links {
+    int taken = 0;
+    ~Links() { chain_depth -= taken; }
+  } links;
+  SerialReceiver* at = this;
+  const LineBurst* b = &burst;
+  for (;;) {
+    at->check(*b);
+    LineListener* next = nullptr;
+    const LineBurst* out = nullptr;
+    if (!at->try_lazy_hop(*b, next, out)) {
+      at->absorb_lazy();
+      return at->announce(*b);
+    }
+    ++chain_depth;
+    ++links.taken;
+    at = next->receiver();
+    if (at == nullptr) return next->line_burst(*out);
+    b = out;
   }
-  if (try_lazy_hop(burst)) return;
-  absorb_lazy();
-  announce(burst);
+}
+
+void SerialReceiver::bad_burst(const LineBurst& burst) {
+  if (!burst.bits) throw std::invalid_argument("RxD: a burst without bits");
+  throw std::invalid_argument("RxD: a burst with bit period " + std::to_string(burst.bit_period) +
+                              " ps");
 }
 
 // --- lazy hops ------------------------------------------------------------------------------
@@ -60,7 +79,8 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
   return false;
 }
 
-inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
+inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next,
+                                         const LineBurst*& out) {
   // Lazy hops on, running (a unit in reset has no bit period) and at this chip's rate.
   if (b.bit_period != hop_period_ || chain_depth >= kMaxChain) return false;
   const sim::Time now = scheduler_.now();
@@ -90,8 +110,6 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   kept.leaving.bit_period = b.bit_period;
   kept.leaving.bits = b.bits;
   kept.arrived = b.start;
-  LineListener* next = nullptr;
-  const LineBurst* out = nullptr;
   // After a lazy hop here nothing has changed the repeater or TxD (every way into them
   // absorbs the lazy bursts first), and this burst leaves after that one: their checks
   // hold still, only the listener's own are left.
@@ -105,8 +123,6 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b) {
   kept.reaches = out->start;
   ++lazy_hops_taken_;
   prune_lazy(now);
-  const sim::ScopedCount link(chain_depth);
-  next->line_burst(*out);
   return true;
 }
 

@@ -28,7 +28,8 @@ constexpr std::size_t kMaxTimeline = 4096;
 }  // namespace
 
 SerialReceiver::SerialReceiver(SerialUnit& unit)
-    : unit_(unit),
+    : LineListener(this),
+      unit_(unit),
       scheduler_(unit.chip().scheduler()),
       mclk_(unit.chip().mclk()),
       recactn_(unit.chip(), Pin::RECACTN, *this) {

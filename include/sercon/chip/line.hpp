@@ -73,6 +73,8 @@ class PassedBursts {
 // a listener keeps what was announced until its time comes, and drops what a later call
 // overtakes. A listener that wants each change at the moment it happens, in time order,
 // sits behind a SettledLine (settled_line.hpp).
+class SerialReceiver;
+
 class LineListener {
  public:
   virtual ~LineListener() = default;
@@ -99,6 +101,17 @@ class LineListener {
   // A burst taken by pass_through before (its start as it was passed in), booked now as
   // line_burst() would have booked it then, telling no one.
   virtual void book_passed(const LineBurst& burst) { (void)burst; }
+
+  // A chip's receiver (null for every other listener): a chain of lazy hops goes on from
+  // receiver to receiver in one loop rather than a call per hop (SerialReceiver::line_burst).
+  SerialReceiver* receiver() const { return receiver_; }
+
+ protected:
+  LineListener() = default;
+  explicit LineListener(SerialReceiver* receiver) : receiver_(receiver) {}
+
+ private:
+  SerialReceiver* receiver_ = nullptr;
 };
 
 }  // namespace sercon::chip

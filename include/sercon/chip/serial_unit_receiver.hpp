@@ -209,9 +209,15 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[noreturn, gnu::cold, gnu::noinline]] static void refuse_past(sim::Time at, sim::Time now);
   [[noreturn, gnu::cold, gnu::noinline]] void refuse_more(sim::Time now) const;
   Entry& append(RxdSegment&& segment);
-  // true: passed on lazily. Inline in line_burst(), as drop_lazy_over() in it: a call less
-  // per hop of a lazy chain.
-  inline bool try_lazy_hop(const LineBurst& burst);
+  // true: taken lazily; the caller delivers `out` to `next` (LineListener::pass_through).
+  // Inline in line_burst(), as drop_lazy_over() in it: a call less per hop of a lazy chain.
+  inline bool try_lazy_hop(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
+  // std::invalid_argument for a burst without bits or a bit period.
+  void check(const LineBurst& burst) {
+    if (!burst.bits || burst.bit_period <= 0) [[unlikely]]
+      bad_burst(burst);
+  }
+  [[noreturn, gnu::cold]] static void bad_burst(const LineBurst& burst);
   bool wants_a_report(const LineBurst& burst) const;
   // What wants_a_report() and lazy_report_due() must look at, from the handlers and the
   // interest (set rarely, asked at every hop): no report at all; every report (one handler
