@@ -113,8 +113,7 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   // After a lazy hop here nothing has changed the repeater or TxD (every way into them
   // absorbs the lazy bursts first), and this burst leaves after that one: their checks
   // hold still, only the listener's own are left.
-  const bool passed = after_lazy ? unit_.outputs().lone_follower()->pass_through(
-                                       kept.leaving, next, out, unit_.outputs())
+  const bool passed = after_lazy ? unit_.outputs().follower_takes(kept.leaving, next, out)
                                  : repeater.pass_through(kept.leaving, next, out);
   if (!passed) {
     lazy_.pop_back();

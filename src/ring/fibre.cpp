@@ -31,7 +31,10 @@ bool toggles(LineCondition c) { return c == LineCondition::Idle || c == LineCond
 }  // namespace
 
 Fibre::Fibre(sim::Scheduler& scheduler, double length_m, sim::Time ps_per_metre)
-    : scheduler_(scheduler), length_m_(length_m), delay_(delay_of(length_m, ps_per_metre)) {}
+    : scheduler_(scheduler),
+      length_m_(length_m),
+      delay_(delay_of(length_m, ps_per_metre)),
+      link_(scheduler, delay_) {}
 
 Fibre::~Fibre() {
   for (const auto id : switches_) scheduler_.cancel(id);
@@ -125,20 +128,10 @@ void Fibre::drop_from(sim::Time start) {
 // is, so the sender may deliver it to the far end itself. The sender keeps it and books it
 // here when asked (book_passed): a history entry per hop cost as much as the rest of it.
 // Bursts from another sender still waiting to be booked: the full path, which books them.
+// A chip's TxD asks the link inline (PlainLink); this is for other senders.
 bool Fibre::Input::pass_through(const LineBurst& burst, chip::LineListener*& next,
                                 const LineBurst*& out, chip::PassedBursts& sender) {
-  Fibre& f = fibre_;
-  if (!f.plain_) return false;
-  if (!burst.bits || burst.bit_period <= 0 || burst.start < f.scheduler_.now()) return false;
-  if (f.passed_from_ != nullptr && f.passed_from_ != &sender) return false;
-  f.passed_from_ = &sender;
-  f.last_passed_ = burst.start + f.delay_;
-  f.passed_.start = f.last_passed_;
-  f.passed_.bit_period = burst.bit_period;
-  f.passed_.bits = burst.bits;
-  next = f.output_;
-  out = &f.passed_;
-  return true;
+  return fibre_.link_.pass(burst, sender, next, out);
 }
 
 void Fibre::Input::book_passed(const LineBurst& burst) {
@@ -151,7 +144,7 @@ void Fibre::Input::book_passed(const LineBurst& burst) {
   c.burst.start = start;
   c.burst.bit_period = period;
   c.burst.bits = std::move(bits);
-  if (start == f.last_passed_) f.passed_from_ = nullptr;  // the last one: all are booked
+  f.link_.booked(start);
 }
 
 void Fibre::pass_on(const Change& c) {

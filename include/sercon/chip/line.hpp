@@ -73,6 +73,7 @@ class PassedBursts {
 // a listener keeps what was announced until its time comes, and drops what a later call
 // overtakes. A listener that wants each change at the moment it happens, in time order,
 // sits behind a SettledLine (settled_line.hpp).
+class PlainLink;
 class SerialReceiver;
 
 class LineListener {
@@ -105,13 +106,18 @@ class LineListener {
   // A chip's receiver (null for every other listener): a chain of lazy hops goes on from
   // receiver to receiver in one loop rather than a call per hop (SerialReceiver::line_burst).
   SerialReceiver* receiver() const { return receiver_; }
+  // A plain link's input (null for every other listener): its pass_through is data a
+  // sender asks inline (plain_link.hpp).
+  PlainLink* plain_link() const { return plain_link_; }
 
  protected:
   LineListener() = default;
   explicit LineListener(SerialReceiver* receiver) : receiver_(receiver) {}
+  explicit LineListener(PlainLink* link) : plain_link_(link) {}
 
  private:
   SerialReceiver* receiver_ = nullptr;
+  PlainLink* plain_link_ = nullptr;
 };
 
 }  // namespace sercon::chip

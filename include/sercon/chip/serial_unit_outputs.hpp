@@ -9,6 +9,7 @@
 #include <array>
 
 #include "sercon/chip/line.hpp"
+#include "sercon/chip/plain_link.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
@@ -57,10 +58,14 @@ class TxdOutputs final : public PassedBursts {
   // before and not yet absorbed.
   inline bool follower_pass_through(const LineBurst& burst, LineListener*& next,
                                     const LineBurst*& out);
+  // The lone follower's pass_through alone, nothing else set: inline when it is a plain
+  // link (a ring's fibre), else by its call.
+  bool follower_takes(const LineBurst& burst, LineListener*& next, const LineBurst*& out) {
+    return lone_link_ != nullptr ? lone_link_->pass(burst, *this, next, out)
+                                 : lone_follower_->pass_through(burst, next, out, *this);
+  }
   // How long after leaving a burst the lone follower took reaches the listener behind it.
   sim::Time follower_delay() const { return follower_delay_; }
-  // The one listener following the line (null: none, or two); set while bursts are lazy.
-  LineListener* lone_follower() const { return lone_follower_; }
   // A burst passed through before: into the line as line_burst() would, no listener told
   // (the listener books it when it asks, book_all).
   inline void absorb(const LineBurst& burst);  // serial_unit_pass_through.hpp
@@ -154,6 +159,7 @@ class TxdOutputs final : public PassedBursts {
   sim::Scheduler& scheduler_;  // the chip's: asked for now at every burst
   std::array<Output, 6> outputs_{};
   LineListener* lone_follower_ = nullptr;  // the one listener following the line; none or two: null
+  PlainLink* lone_link_ = nullptr;         // lone_follower_->plain_link()
   // The last unbooked_ segments of line_ are bursts the lone follower took by pass_through
   // and has not booked; they reach it follower_delay_ after they leave.
   std::size_t unbooked_ = 0;

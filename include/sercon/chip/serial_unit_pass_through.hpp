@@ -46,8 +46,7 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   LineListener* const only = lone_follower_;
   LineListener* next = nullptr;
   const LineBurst* out = nullptr;
-  const bool passed =
-      pass_unbooked_ && only != nullptr && only->pass_through(burst, next, out, *this);
+  const bool passed = pass_unbooked_ && only != nullptr && follower_takes(burst, next, out);
   if (passed) {
     follower_delay_ = out->start - burst.start;
   } else if (unbooked_ > 0) {
@@ -135,7 +134,7 @@ inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next
 
 inline bool TxdOutputs::follower_pass_through(const LineBurst& burst, LineListener*& next,
                                               const LineBurst*& out) {
-  if (!lone_follower_->pass_through(burst, next, out, *this)) return false;
+  if (!follower_takes(burst, next, out)) return false;
   follower_delay_ = out->start - burst.start;
   return true;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sercon/chip/line.hpp"
+#include "sercon/chip/plain_link.hpp"
 #include "sercon/ring/bit_errors.hpp"
 #include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/scheduler.hpp"
@@ -42,7 +43,7 @@ class Fibre {
   void disconnect();
 
   double length_m() const { return length_m_; }
-  sim::Time delay() const { return delay_; }
+  sim::Time delay() const { return link_.delay(); }
 
   // A break: the far end sees Dark from that moment (a telegram crossing it is cut there);
   // what enters meanwhile is lost. Restored, the far end gets what arrives then: the present
@@ -60,7 +61,7 @@ class Fibre {
  private:
   class Input final : public chip::LineListener {
    public:
-    explicit Input(Fibre& fibre) : fibre_(fibre) {}
+    explicit Input(Fibre& fibre) : LineListener(&fibre.link_), fibre_(fibre) {}
     void line_condition(sim::Time at, chip::LineCondition condition, sim::Time period) override;
     void line_burst(const chip::LineBurst& burst) override;
     bool pass_through(const chip::LineBurst& burst, chip::LineListener*& next,
@@ -89,29 +90,24 @@ class Fibre {
   // The bursts passed through and not yet booked go into the history first (their sender
   // books them): before the history is read or added to.
   void book_passed() {
-    if (passed_from_ != nullptr) std::exchange(passed_from_, nullptr)->book_all();
+    if (chip::PassedBursts* const sender = link_.take_sender()) sender->book_all();
   }
   void tell_far_end();  // the far end's present condition, then what is still on its way
   // After a break, restore, connect, disconnect or bit error rate change.
-  void update_plain() { plain_ = !broken_ && !errors_.enabled() && output_ != nullptr; }
+  void update_plain() { link_.set(output_, !broken_ && !errors_.enabled()); }
   sim::Scheduler& scheduler_;
   double length_m_;
   sim::Time delay_;
+  // Lazy hops: whole, without bit errors and connected, a burst passes through (asked at
+  // every hop); the bursts passed through and not yet booked are held by their sender.
+  chip::PlainLink link_;
   Input input_{*this};
   chip::LineListener* output_ = nullptr;
   bool broken_ = false;
   BitErrors errors_;
-  // Whole, without bit errors and connected: a burst may pass through (asked at every hop).
-  bool plain_ = false;
   // What went in and reaches (or reached) the far end, in time order: the change in force
   // there now and those still on their way (kept while broken, for a restore).
   sim::CircularQueue<Change> history_;
-  // Lazy hops: who holds the bursts passed through and not yet booked (null: none), the
-  // last one's start at the far end (booked, it is the last), and that burst as it was
-  // handed on (pass_through's `out`).
-  chip::PassedBursts* passed_from_ = nullptr;
-  sim::Time last_passed_ = 0;
-  chip::LineBurst passed_;
   std::vector<sim::Scheduler::EventId> switches_;  // break_at / restore_at
 };
 

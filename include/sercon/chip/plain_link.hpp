@@ -1,0 +1,65 @@
+// A link that passes every burst on unchanged after a fixed delay to one listener (a whole
+// fibre without bit errors: ring::Fibre), kept as data so that a chip's TxD takes a burst
+// through it inline (LineListener::pass_through's work, without a call): at every hop a
+// telegram makes (docs/serial-and-ring.md, "Lazy hops").
+#pragma once
+
+#include "sercon/chip/line.hpp"
+#include "sercon/sim/scheduler.hpp"
+
+namespace sercon::chip {
+
+class PlainLink {
+ public:
+  explicit PlainLink(const sim::Scheduler& scheduler, sim::Time delay)
+      : scheduler_(scheduler), delay_(delay) {}
+  PlainLink(const PlainLink&) = delete;
+  PlainLink& operator=(const PlainLink&) = delete;
+
+  // LineListener::pass_through: when the link is plain, the burst as it reaches `next`.
+  // Bursts of another sender still waiting to be booked: refused (they take the full path,
+  // which books them).
+  bool pass(const LineBurst& burst, PassedBursts& sender, LineListener*& next,
+            const LineBurst*& out) {
+    if (!plain_) return false;
+    if (!burst.bits || burst.bit_period <= 0 || burst.start < scheduler_.now()) return false;
+    if (passed_from_ != nullptr && passed_from_ != &sender) return false;
+    passed_from_ = &sender;
+    passed_.start = burst.start + delay_;
+    passed_.bit_period = burst.bit_period;
+    passed_.bits = burst.bits;
+    next = output_;
+    out = &passed_;
+    return true;
+  }
+
+  sim::Time delay() const { return delay_; }
+  LineListener* output() const { return output_; }
+  // Set by the owner: where it delivers, and whether it passes bursts on as they are (and
+  // has somewhere to pass them).
+  void set(LineListener* output, bool plain) {
+    output_ = output;
+    plain_ = plain && output != nullptr;
+  }
+  // Who holds the bursts passed and not yet booked (null: none), taken back; the owner asks
+  // it to book them before it reads or adds to what it holds.
+  PassedBursts* take_sender() {
+    PassedBursts* s = passed_from_;
+    passed_from_ = nullptr;
+    return s;
+  }
+  // A burst booked (its start at the far end): the last one passed means all are.
+  void booked(sim::Time start) {
+    if (start == passed_.start) passed_from_ = nullptr;
+  }
+
+ private:
+  const sim::Scheduler& scheduler_;
+  sim::Time delay_;
+  LineListener* output_ = nullptr;
+  bool plain_ = false;
+  PassedBursts* passed_from_ = nullptr;
+  LineBurst passed_;  // the last burst passed, as it was handed on (pass's `out`)
+};
+
+}  // namespace sercon::chip
