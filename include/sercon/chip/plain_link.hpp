@@ -21,8 +21,14 @@ class PlainLink {
   // which books them).
   bool pass(const LineBurst& burst, PassedBursts& sender, LineListener*& next,
             const LineBurst*& out) {
-    if (!plain_) return false;
     if (!burst.bits || burst.bit_period <= 0 || burst.start < scheduler_.now()) return false;
+    return pass_checked(burst, sender, next, out);
+  }
+  // pass() for a burst known to have bits and a bit period, at or after now: a chip's TxD
+  // hands on only what it was announced, and that was checked where it came in.
+  bool pass_checked(const LineBurst& burst, PassedBursts& sender, LineListener*& next,
+                    const LineBurst*& out) {
+    if (!plain_) return false;
     if (passed_from_ != nullptr && passed_from_ != &sender) return false;
     passed_from_ = &sender;
     passed_.start = burst.start + delay_;

@@ -59,9 +59,10 @@ class TxdOutputs final : public PassedBursts {
   inline bool follower_pass_through(const LineBurst& burst, LineListener*& next,
                                     const LineBurst*& out);
   // The lone follower's pass_through alone, nothing else set: inline when it is a plain
-  // link (a ring's fibre), else by its call.
+  // link (a ring's fibre), else by its call. What TxD hands on was checked where it came in
+  // (bits, a bit period, not before now), so the link does not check it again.
   bool follower_takes(const LineBurst& burst, LineListener*& next, const LineBurst*& out) {
-    return lone_link_ != nullptr ? lone_link_->pass(burst, *this, next, out)
+    return lone_link_ != nullptr ? lone_link_->pass_checked(burst, *this, next, out)
                                  : lone_follower_->pass_through(burst, next, out, *this);
   }
   // How long after leaving a burst the lone follower took reaches the listener behind it.
