@@ -22,10 +22,10 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     int taken = 0;
     ~Links() { chain_depth -= taken; }
   } links;
+  check(burst);  // those handed on by pass_through have bits and a bit period (line.hpp)
   SerialReceiver* at = this;
   const LineBurst* b = &burst;
   for (;;) {
-    at->check(*b);
     LineListener* next = nullptr;
     const LineBurst* out = nullptr;
     if (!at->try_lazy_hop(*b, next, out)) {
@@ -59,6 +59,7 @@ void SerialReceiver::set_lazy_hops(bool on) {
 
 void SerialReceiver::refresh_hop_period() {
   hop_period_ = lazy_hops_ && unit_.running() ? unit_.bit_period() : 0;
+  hop_lag_ = report_lag(hop_period_);
 }
 
 // What consider() would plan for the burst's frames in the telegram processor's present
@@ -95,7 +96,7 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   const bool after_lazy = !lazy_.empty();
   if (after_lazy) {
     const LazyBurst& last = lazy_.back();
-    if (last.end_at_rxd() > b.start || last.leaves() >= leaves) return false;
+    if (last.ends > b.start || last.leaves() >= leaves) return false;
   } else {
     const Entry& last = timeline_.back();
     if (last.segment.since >= b.start || !good(last.segment)) return false;
@@ -110,6 +111,8 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   kept.leaving.bit_period = b.bit_period;
   kept.leaving.bits = b.bits;
   kept.arrived = b.start;
+  kept.ends = b.start + static_cast<sim::Time>(b.bits->size()) * b.bit_period;
+  kept.reports_over = kept.ends + hop_lag_;  // report_lag(b.bit_period)
   // After a lazy hop here nothing has changed the repeater or TxD (every way into them
   // absorbs the lazy bursts first), and this burst leaves after that one: their checks
   // hold still, only the listener's own are left.
@@ -137,7 +140,7 @@ inline void SerialReceiver::prune_lazy(sim::Time now) {
 inline void SerialReceiver::drop_lazy_over(sim::Time now) {
   do {
     const LazyBurst& front = lazy_.front();
-    if (front.end_at_rxd() + report_lag(front.leaving.bit_period) >= now) return;
+    if (front.reports_over >= now) return;
     lazy_.pop_front();
   } while (lazy_.size() > 1 && lazy_[1].reaches <= now);
 }
@@ -172,7 +175,7 @@ bool SerialReceiver::lazy_report_due(sim::Time now) const {
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.leaving;
-    if (lazy.end_at_rxd() + report_lag(b.bit_period) < now) continue;  // its reports are past
+    if (lazy.reports_over < now) continue;  // its reports are past
     for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
       if (!may_want(f)) continue;
       const sim::Time start = lazy.arrived + static_cast<sim::Time>(f.start_bit) * b.bit_period;

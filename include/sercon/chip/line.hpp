@@ -90,7 +90,8 @@ class LineListener {
   // unchanged to exactly one other listener (a whole fibre without bit errors) may take it
   // as line_burst() would and, instead of telling that one, hand it back: `next` and the
   // burst as it reaches `next`, for the caller to deliver at once (`out` points into the
-  // listener, valid until it is told anything else: no copy of the bits per hop). False
+  // listener, valid until it is told anything else: no copy of the bits per hop; it has the
+  // burst's bits and bit period, so `next` need not check them again). False
   // (the default): nothing was taken, call line_burst(). Taken, the burst need not be
   // booked yet: `sender` keeps it and books it by book_passed() when the listener asks
   // (PassedBursts::book_all), or before it tells the listener anything else.

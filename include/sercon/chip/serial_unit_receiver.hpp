@@ -349,15 +349,17 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   struct LazyBurst {
     LineBurst leaving;
     sim::Time arrived = 0;
+    sim::Time ends = 0;          // at RxD
+    sim::Time reports_over = 0;  // after ends: what a report of its frames would come by
     sim::Time reaches = 0;  // the next receiver (the fibre books it only when it reads its history)
     sim::Time leaves() const { return leaving.start; }
-    sim::Time end_at_rxd() const { return arrived + leaving.duration(); }
   };
   sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;
   // The rate a burst must come at to hop lazily: the unit's bit period while lazy hops are
   // on (0 while not running), else 0. Kept where those change (asked at every hop).
   sim::Time hop_period_ = 0;
+  sim::Time hop_lag_ = 0;  // report_lag(hop_period_): a lazy burst's reports_over
   HopCheck hop_check_ = HopCheck::None;
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
