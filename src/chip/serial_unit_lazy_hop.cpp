@@ -25,6 +25,7 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
   check(burst);  // those handed on by pass_through have bits and a bit period (line.hpp)
   SerialReceiver* at = this;
   const LineBurst* b = &burst;
+  LineBurst hold;  // a copy of what a node hands itself (its TxD back to its own RxD)
   for (;;) {
     LineListener* next = nullptr;
     const LineBurst* out = nullptr;
@@ -34,9 +35,20 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     }
     ++chain_depth;
     ++links.taken;
-    at = next->receiver();
-    if (at == nullptr) return next->line_burst(*out);
-    b = out;
+    // `out` is the node's lazy burst: a copy for whatever may change its lazy bursts before
+    // it has read them (the node itself; a listener that is not a receiver may call out).
+    SerialReceiver* const r = next->receiver();
+    if (r == nullptr) {
+      hold = *out;
+      return next->line_burst(hold);
+    }
+    if (r == at) {
+      hold = *out;
+      b = &hold;
+    } else {
+      b = out;
+    }
+    at = r;
   }
 }
 
@@ -95,41 +107,40 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   const sim::Time leaves = repeater.forward_time(b.start);
   const bool after_lazy = !lazy_.empty();
   if (after_lazy) {
+    // After a lazy hop here nothing has changed the repeater or TxD (every way into them
+    // absorbs the lazy bursts first), and this burst leaves after that one: their checks
+    // hold still, only the listener's own are left.
     const LazyBurst& last = lazy_.back();
-    if (last.ends > b.start || last.leaves() >= leaves) return false;
+    if (last.ends > b.start || last.leaves >= leaves) return false;
   } else {
     const Entry& last = timeline_.back();
     if (last.segment.since >= b.start || !good(last.segment)) return false;
     if (last.segment.is_burst && b.start < last.cut) return false;
+    if (!repeater.would_pass(leaves)) return false;
   }
-  // The burst as it leaves TxD, kept (built in its place, taken back if the stages refuse)
-  // and handed to the stages. A copy first: `b` may live in the history of a fibre this hop
-  // books into (a node whose TxD comes back to its own RxD), which may move it; `b` is not
-  // read after the stages.
+  // The burst as it reaches the next receiver, kept (built in its place, taken back if the
+  // listener refuses) and handed on.
   LazyBurst& kept = lazy_.emplace_back();
-  kept.leaving.start = leaves;
-  kept.leaving.bit_period = b.bit_period;
-  kept.leaving.bits = b.bits;
+  kept.reaching.bit_period = b.bit_period;
+  kept.reaching.bits = b.bits;
   kept.arrived = b.start;
+  kept.leaves = leaves;
   kept.ends = b.start + static_cast<sim::Time>(b.bits->size()) * b.bit_period;
   kept.reports_over = kept.ends + hop_lag_;  // report_lag(b.bit_period)
-  // After a lazy hop here nothing has changed the repeater or TxD (every way into them
-  // absorbs the lazy bursts first), and this burst leaves after that one: their checks
-  // hold still, only the listener's own are left.
-  const bool passed = after_lazy ? unit_.outputs().follower_takes(kept.leaving, next, out)
-                                 : repeater.pass_through(kept.leaving, next, out);
-  if (!passed) {
+  TxdOutputs& txd = unit_.outputs();
+  if (!txd.follower_takes_into(leaves, kept.reaching, next)) {
     lazy_.pop_back();
     return false;
   }
-  kept.reaches = out->start;
+  if (!after_lazy) txd.set_follower_delay(kept.reaching.start - leaves);  // as pass_through()
+  out = &kept.reaching;
   ++lazy_hops_taken_;
-  prune_lazy(now);
+  prune_lazy(now);  // keeps the last one
   return true;
 }
 
 inline void SerialReceiver::prune_lazy(sim::Time now) {
-  if (lazy_.size() > 1 && lazy_[1].reaches <= now) drop_lazy_over(now);  // mostly not
+  if (lazy_.size() > 1 && lazy_[1].reaches() <= now) drop_lazy_over(now);  // mostly not
 }
 
 // Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
@@ -142,7 +153,7 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
     const LazyBurst& front = lazy_.front();
     if (front.reports_over >= now) return;
     lazy_.pop_front();
-  } while (lazy_.size() > 1 && lazy_[1].reaches <= now);
+  } while (lazy_.size() > 1 && lazy_[1].reaches() <= now);
 }
 
 void SerialReceiver::absorb_waiting() {
@@ -156,11 +167,11 @@ void SerialReceiver::absorb_waiting() {
   } let_go{lazy_};
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
-    const LineBurst& b = lazy.leaving;
+    const LineBurst& b = lazy.reaching;
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
     prune();
     take(append(RxdSegment{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits}));
-    unit_.repeater().absorb(b);
+    unit_.repeater().absorb(LineBurst{lazy.leaves, b.bit_period, b.bits});
   }
 }
 
@@ -174,7 +185,7 @@ bool SerialReceiver::lazy_report_due(sim::Time now) const {
   if (hop_check_ != HopCheck::Frames) return true;
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
-    const LineBurst& b = lazy.leaving;
+    const LineBurst& b = lazy.reaching;
     if (lazy.reports_over < now) continue;  // its reports are past
     for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
       if (!may_want(f)) continue;

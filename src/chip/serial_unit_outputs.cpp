@@ -140,6 +140,14 @@ void TxdOutputs::book_unbooked() {
   for (std::size_t i = first; i < line_.size(); ++i) lone_follower_->book_passed(line_[i].burst());
 }
 
+bool TxdOutputs::follower_takes_copy(sim::Time leaves, LineBurst& into, LineListener*& next) {
+  const LineBurst leaving{leaves, into.bit_period, into.bits};
+  const LineBurst* out = nullptr;
+  if (!lone_follower_->pass_through(leaving, next, out, *this)) return false;
+  into = *out;
+  return true;
+}
+
 // Not one listener following the line: each that does is told.
 void TxdOutputs::tell_followers(const LineBurst& burst) {
   for (Output& out : outputs_) {

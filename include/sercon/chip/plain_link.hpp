@@ -31,11 +31,21 @@ class PlainLink {
     if (!plain_) return false;
     if (passed_from_ != nullptr && passed_from_ != &sender) return false;
     passed_from_ = &sender;
-    passed_.start = burst.start + delay_;
+    passed_.start = last_passed_ = burst.start + delay_;
     passed_.bit_period = burst.bit_period;
     passed_.bits = burst.bits;
     next = output_;
     out = &passed_;
+    return true;
+  }
+  // pass_checked() for a sender that keeps the burst as it reaches `next` itself (a lazy
+  // hop): only when it arrives there, the burst leaving at `leaves`.
+  bool pass_at(sim::Time leaves, PassedBursts& sender, LineListener*& next, sim::Time& arrives) {
+    if (!plain_) return false;
+    if (passed_from_ != nullptr && passed_from_ != &sender) return false;
+    passed_from_ = &sender;
+    arrives = last_passed_ = leaves + delay_;
+    next = output_;
     return true;
   }
 
@@ -56,7 +66,7 @@ class PlainLink {
   }
   // A burst booked (its start at the far end): the last one passed means all are.
   void booked(sim::Time start) {
-    if (start == passed_.start) passed_from_ = nullptr;
+    if (start == last_passed_) passed_from_ = nullptr;
   }
 
  private:
@@ -65,7 +75,8 @@ class PlainLink {
   LineListener* output_ = nullptr;
   bool plain_ = false;
   PassedBursts* passed_from_ = nullptr;
-  LineBurst passed_;  // the last burst passed, as it was handed on (pass's `out`)
+  sim::Time last_passed_ = 0;  // the last burst passed: its start at the far end
+  LineBurst passed_;           // the last one pass() handed on (its `out`)
 };
 
 }  // namespace sercon::chip

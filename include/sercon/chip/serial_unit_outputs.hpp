@@ -65,6 +65,15 @@ class TxdOutputs final : public PassedBursts {
     return lone_link_ != nullptr ? lone_link_->pass_checked(burst, *this, next, out)
                                  : lone_follower_->pass_through(burst, next, out, *this);
   }
+  // follower_takes() for a burst leaving at `leaves` that the caller keeps as it reaches
+  // `next` (a lazy hop): `into` has its bits and bit period, and gets its start there.
+  bool follower_takes_into(sim::Time leaves, LineBurst& into, LineListener*& next) {
+    if (lone_link_ != nullptr) return lone_link_->pass_at(leaves, *this, next, into.start);
+    return follower_takes_copy(leaves, into, next);
+  }
+  // pass_through()'s checks alone, for a burst leaving at `leaves`.
+  inline bool would_pass(sim::Time leaves) const;  // serial_unit_pass_through.hpp
+  void set_follower_delay(sim::Time delay) { follower_delay_ = delay; }
   // How long after leaving a burst the lone follower took reaches the listener behind it.
   sim::Time follower_delay() const { return follower_delay_; }
   // A burst passed through before: into the line as line_burst() would, no listener told
@@ -149,6 +158,8 @@ class TxdOutputs final : public PassedBursts {
   // The last unbooked_ segments of the line into the lone follower (book_passed).
   [[gnu::noinline]] void book_unbooked();
   void tell_followers(const LineBurst& burst);
+  // follower_takes_into() through a listener without a plain link: by its pass_through.
+  bool follower_takes_copy(sim::Time leaves, LineBurst& into, LineListener*& next);
   bool dark_now() const;
   const RxdSegment& line_now() const;
   void plan_pins();  // an event where the line next goes dark or lights up

@@ -119,17 +119,17 @@ inline void TxdOutputs::absorb(const LineBurst& burst) {
   ++unbooked_;  // it took the burst by pass_through: booked when it asks (book_all)
 }
 
-inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,
-                                     const LineBurst*& out) {
-  LineListener* only = lone_follower_;
+inline bool TxdOutputs::would_pass(sim::Time leaves) const {
   // Nothing announced at or after it to drop, and no change between dark and light (the
   // pins' plan stays as it is): what line_burst() would do is only to keep it.
-  if (only == nullptr) return false;
+  if (lone_follower_ == nullptr) return false;
   const RxdSegment& last = line_.back();
-  if (last.since >= burst.start || (!last.is_burst && last.condition == LineCondition::Dark)) {
-    return false;
-  }
-  return follower_pass_through(burst, next, out);
+  return last.since < leaves && (last.is_burst || last.condition != LineCondition::Dark);
+}
+
+inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,
+                                     const LineBurst*& out) {
+  return would_pass(burst.start) && follower_pass_through(burst, next, out);
 }
 
 inline bool TxdOutputs::follower_pass_through(const LineBurst& burst, LineListener*& next,
@@ -139,19 +139,16 @@ inline bool TxdOutputs::follower_pass_through(const LineBurst& burst, LineListen
   return true;
 }
 
-inline bool SerialRepeater::pass_through(const LineBurst& leaving, LineListener*& next,
-                                         const LineBurst*& out) {
-  const sim::Time leaves = leaving.start;
+inline bool SerialRepeater::would_pass(sim::Time leaves) const {
   if (!repon_ || unit_.bit_period() == 0) return false;
   // What prune() would leave: no own telegram not yet over (they end in order), and the
   // background never pruned empty. Nothing is kept, so nothing needs pruning here.
   if (!own_.empty() && own_.back().end() > scheduler_.now()) return false;
-  if (!forwarded_.empty()) {  // TxD holds as it did for those: only its listener is asked
-    if (forwarded_.back().start >= leaves) return false;
-    return unit_.outputs().follower_pass_through(leaving, next, out);
-  }
+  // After read hops' bursts forwarded unbooked TxD holds as it did for those: only its
+  // listener is left to ask.
+  if (!forwarded_.empty()) return forwarded_.back().start < leaves;
   if (background_.empty() || background_.back().since >= leaves) return false;
-  return unit_.outputs().pass_through(leaving, next, out);
+  return unit_.outputs().would_pass(leaves);
 }
 
 }  // namespace sercon::chip

@@ -344,15 +344,16 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // 254 slaves: its slots, cycled through, spread each node's timeline over more memory.)
   std::vector<Entry> timeline_;
   std::uint64_t next_serial_ = 1;
-  // Bursts passed on by lazy hops and not yet absorbed, in time order: as they leave TxD
-  // (the burst the hop handed on, so it needs no copy of its own), and when they reached RxD.
+  // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach the
+  // next receiver (the burst the hop handed on, so it needs no copy of its own), and when
+  // they reached RxD and left TxD.
   struct LazyBurst {
-    LineBurst leaving;
+    LineBurst reaching;  // the next receiver (the fibre books it only when it reads its history)
     sim::Time arrived = 0;
+    sim::Time leaves = 0;
     sim::Time ends = 0;          // at RxD
     sim::Time reports_over = 0;  // after ends: what a report of its frames would come by
-    sim::Time reaches = 0;  // the next receiver (the fibre books it only when it reads its history)
-    sim::Time leaves() const { return leaving.start; }
+    sim::Time reaches() const { return reaching.start; }
   };
   sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;

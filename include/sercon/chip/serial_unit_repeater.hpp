@@ -33,14 +33,13 @@ class SerialRepeater {
   // REPON or the bit rate changed.
   void refresh();
 
-  // Lazy hops (docs/serial-and-ring.md): a burst that reaches RxD at burst.start, when it
-  // would go straight on (REPON on, nothing of its own in the way or announced after it),
-  // is handed to TxD's pass_through() at the time it leaves (to the lone follower's alone
-  // after a read hop's burst forwarded unbooked); absorb() takes it into the
-  // repeater's line (and TxD's) later, as input() would have, telling no one.
-  // `leaving` starts at forward_time(the start at RxD); `absorb` gets it again.
-  // Inline (serial_unit_pass_through.hpp).
-  inline bool pass_through(const LineBurst& leaving, LineListener*& next, const LineBurst*& out);
+  // Lazy hops (docs/serial-and-ring.md): whether a burst leaving at `leaves`
+  // (forward_time() of its start at RxD) would go straight on to TxD's lone follower (REPON
+  // on, nothing of its own in the way or announced after it, and TxD's checks, or only the
+  // follower's left after a read hop's burst forwarded unbooked); the receiver then hands
+  // it to that follower, and absorb() takes it into the repeater's line (and TxD's) later,
+  // as input() would have, telling no one. Inline (serial_unit_pass_through.hpp).
+  inline bool would_pass(sim::Time leaves) const;
   inline void absorb(const LineBurst& leaving);  // serial_unit_pass_through.hpp
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
