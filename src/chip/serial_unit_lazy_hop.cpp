@@ -112,6 +112,14 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
     // hold still, only the listener's own are left.
     const LazyBurst& last = lazy_.back();
     if (last.ends > b.start || last.leaves >= leaves) return false;
+    // Those over by now go first, as the full path would prune them (after the push it
+    // would find the same: this one has not reached the next receiver yet). Mostly the
+    // front of two, the last one having reached it.
+    if (lazy_.size() == 2) {
+      if (last.reaches() <= now && lazy_.front().reports_over < now) lazy_.pop_front();
+    } else {
+      prune_lazy(now);
+    }
   } else {
     const Entry& last = timeline_.back();
     if (last.segment.since >= b.start || !good(last.segment)) return false;
@@ -135,7 +143,6 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   if (!after_lazy) txd.set_follower_delay(kept.reaching.start - leaves);  // as pass_through()
   out = &kept.reaching;
   ++lazy_hops_taken_;
-  prune_lazy(now);  // keeps the last one
   return true;
 }
 
