@@ -59,14 +59,17 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
   // A booking out of order (a missed trigger) throws; the bursts are let go then, so the
   // node does not throw again at every later absorb.
   struct LetGo {
-    sim::CircularQueue<LineBurst>& forwarded;
+    sim::CircularQueue<Forwarded>& forwarded;
     ~LetGo() { forwarded.clear(); }
   } let_go{forwarded_};
   const sim::Time now = scheduler_.now();
   const sim::Time delay = unit_.outputs().follower_delay();
-  while (forwarded_.size() > 1 && forwarded_[1].start + delay <= now) forwarded_.pop_front();
+  while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.pop_front();
   if (next + delay <= now) forwarded_.pop_front();  // the last is over too
-  for (std::size_t i = 0; i < forwarded_.size(); ++i) book(forwarded_[i]);
+  for (std::size_t i = 0; i < forwarded_.size(); ++i) {
+    const Forwarded& f = forwarded_[i];
+    book(LineBurst{f.leaves, f.reaching.bit_period, f.reaching.bits});
+  }
 }
 
 void SerialRepeater::own(const LineBurst& burst) {

@@ -71,26 +71,34 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
   const sim::Time now = scheduler_.now();
   if (!own_.empty() && own_.back().end() > now) return false;
   const bool after = !forwarded_.empty();
-  if (after ? forwarded_.back().start >= at
+  if (after ? forwarded_.back().leaves >= at
             : background_.empty() || background_.back().since >= at) {
     return false;
   }
-  LineBurst& kept = forwarded_.emplace_back();
-  kept.start = at;
-  kept.bit_period = segment.period;
-  kept.bits = segment.bits;
-  LineListener* next = nullptr;
-  const LineBurst* out = nullptr;
   TxdOutputs& txd = unit_.outputs();
-  const bool passed =
-      after ? txd.follower_pass_through(kept, next, out) : txd.pass_through(kept, next, out);
-  if (!passed) {
+  if (!after && !txd.would_pass(at)) return false;
+  // Kept as it reaches TxD's listener, and handed on from here.
+  Forwarded& kept = forwarded_.emplace_back();
+  kept.leaves = at;
+  kept.reaching.bit_period = segment.period;
+  kept.reaching.bits = segment.bits;
+  LineListener* next = nullptr;
+  if (!txd.follower_takes_into(at, kept.reaching, next)) {
     forwarded_.pop_back();
     return false;
   }
-  const sim::Time delay = txd.follower_delay();
-  while (forwarded_.size() > 1 && forwarded_[1].start + delay <= now) forwarded_.pop_front();
-  next->line_burst(*out);
+  const sim::Time delay = kept.reaching.start - at;
+  txd.set_follower_delay(delay);
+  while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.pop_front();
+  const LineBurst& out = kept.reaching;  // the last: not dropped
+  // A copy for whatever may absorb (drop) the forwarded bursts before it has read them:
+  // this node (its TxD back to its own RxD), or a listener that is not a receiver.
+  SerialReceiver* const r = next->receiver();
+  if (r == nullptr || r == &unit_.receiver()) {
+    const LineBurst copy = out;
+    return next->line_burst(copy), true;
+  }
+  next->line_burst(out);
   return true;
 }
 
@@ -146,7 +154,7 @@ inline bool SerialRepeater::would_pass(sim::Time leaves) const {
   if (!own_.empty() && own_.back().end() > scheduler_.now()) return false;
   // After read hops' bursts forwarded unbooked TxD holds as it did for those: only its
   // listener is left to ask.
-  if (!forwarded_.empty()) return forwarded_.back().start < leaves;
+  if (!forwarded_.empty()) return forwarded_.back().leaves < leaves;
   if (background_.empty() || background_.back().since >= leaves) return false;
   return unit_.outputs().would_pass(leaves);
 }

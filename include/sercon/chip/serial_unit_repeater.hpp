@@ -88,10 +88,14 @@ class SerialRepeater {
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
   sim::CircularQueue<RxdSegment> background_;
   sim::CircularQueue<LineBurst> own_;  // own telegrams not yet over, in time order
-  // Read hops' bursts passed on (as they leave TxD) and not yet booked, in time order, all
-  // after background_'s last. One whose successor has reached TxD's listener by now goes
-  // unbooked: the repeater, TxD and the listener would have dropped it then.
-  sim::CircularQueue<LineBurst> forwarded_;
+  // Read hops' bursts passed on (as they reach TxD's listener, and when they leave TxD) and not yet
+  // booked, in time order, all after background_'s last. One whose successor has reached TxD's
+  // listener by now goes unbooked: the repeater, TxD and the listener would have dropped it then.
+  struct Forwarded {
+    LineBurst reaching;  // as it reaches TxD's listener (the burst handed on)
+    sim::Time leaves = 0;
+  };
+  sim::CircularQueue<Forwarded> forwarded_;
   bool forward_unbooked_ = true;
 };
 
