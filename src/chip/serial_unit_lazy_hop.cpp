@@ -69,8 +69,11 @@ void SerialReceiver::set_lazy_hops(bool on) {
   unit_.outputs().set_pass_unbooked(on);
 }
 
+// With the repeater off nothing hops: a master (REPON = 0) reads every burst it gets without
+// asking the rest.
 void SerialReceiver::refresh_hop_period() {
-  hop_period_ = lazy_hops_ && unit_.running() ? unit_.bit_period() : 0;
+  const bool on = lazy_hops_ && unit_.running() && unit_.repeater().on();
+  hop_period_ = on ? unit_.bit_period() : 0;
   hop_lag_ = report_lag(hop_period_);
 }
 
@@ -94,7 +97,8 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
 
 inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next,
                                          const LineBurst*& out) {
-  // Lazy hops on, running (a unit in reset has no bit period) and at this chip's rate.
+  // Lazy hops on, running (a unit in reset has no bit period), the repeater on and at this
+  // chip's rate.
   if (b.bit_period != hop_period_ || chain_depth >= kMaxChain) return false;
   const sim::Time now = scheduler_.now();
   if (b.start <= now) return false;

@@ -20,6 +20,7 @@ SerialRepeater::SerialRepeater(SerialUnit& unit)
 void SerialRepeater::reset() {
   absorb_passed();
   repon_ = false;
+  unit_.receiver().refresh_hop_period();
   background_.clear();
   own_.clear();
   unit_.outputs().line_condition(scheduler_.now(), LineCondition::Dark, 0);
@@ -28,6 +29,7 @@ void SerialRepeater::reset() {
 void SerialRepeater::release() {
   absorb_passed();
   repon_ = unit_.fields().repon.on(unit_.chip().regs());
+  unit_.receiver().refresh_hop_period();
   const sim::Time now = scheduler_.now();
   background_.clear();
   if (repon_) {
@@ -98,6 +100,7 @@ void SerialRepeater::refresh() {
   const sim::Time now = scheduler_.now();
   if (on != repon_) {
     repon_ = on;
+    unit_.receiver().refresh_hop_period();
     if (on) {
       take_up_received();
     } else {

@@ -358,7 +358,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
   bool lazy_hops_ = true;
   // The rate a burst must come at to hop lazily: the unit's bit period while lazy hops are
-  // on (0 while not running), else 0. Kept where those change (asked at every hop).
+  // on and the repeater too (0 while not running), else 0. Kept where those change (asked
+  // at every hop).
   sim::Time hop_period_ = 0;
   sim::Time hop_lag_ = 0;  // report_lag(hop_period_): a lazy burst's reports_over
   HopCheck hop_check_ = HopCheck::None;
