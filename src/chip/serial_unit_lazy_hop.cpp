@@ -120,7 +120,7 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
     // would find the same: this one has not reached the next receiver yet). Mostly the
     // front of two, the last one having reached it.
     if (lazy_.size() == 2) {
-      if (last.reaches() <= now && lazy_.front().reports_over < now) lazy_.pop_front();
+      if (last.reaches() <= now && lazy_.front().reports_over < now) lazy_.drop_front();
     } else {
       prune_lazy(now);
     }
@@ -130,9 +130,9 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
     if (last.segment.is_burst && b.start < last.cut) return false;
     if (!repeater.would_pass(leaves)) return false;
   }
-  // The burst as it reaches the next receiver, kept (built in its place, taken back if the
-  // listener refuses) and handed on.
-  LazyBurst& kept = lazy_.emplace_back();
+  // The burst as it reaches the next receiver, kept (built in its place, every field set,
+  // taken back if the listener refuses) and handed on.
+  LazyBurst& kept = lazy_.reuse_back();
   kept.reaching.bit_period = b.bit_period;
   kept.reaching.bits = b.bits;
   kept.arrived = b.start;
@@ -163,7 +163,7 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
   do {
     const LazyBurst& front = lazy_.front();
     if (front.reports_over >= now) return;
-    lazy_.pop_front();
+    lazy_.drop_front();
   } while (lazy_.size() > 1 && lazy_[1].reaches() <= now);
 }
 

@@ -64,6 +64,20 @@ class CircularQueue {
     head_ = (head_ + 1) & mask_;
     --size_;
   }
+  // For a queue whose every push sets the whole new back (reuse_back): the front goes
+  // without its slot being reset, which keeps what it held until the push that reuses the
+  // slot overwrites it (a held handle is let go then, not now).
+  void drop_front() {
+    head_ = (head_ + 1) & mask_;
+    --size_;
+  }
+  // The slot after the back, counted in as it is (T{}, or what drop_front() left there):
+  // the caller sets all of it.
+  T& reuse_back() {
+    if (size_ == capacity_) [[unlikely]]
+      grow();
+    return next_slot();
+  }
   void clear() {
     while (size_ > 0) pop_back();
     head_ = 0;
