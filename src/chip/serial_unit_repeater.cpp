@@ -23,6 +23,7 @@ void SerialRepeater::reset() {
   unit_.receiver().refresh_hop_period();
   background_.clear();
   own_.clear();
+  own_end_ = 0;
   unit_.outputs().line_condition(scheduler_.now(), LineCondition::Dark, 0);
 }
 
@@ -77,6 +78,7 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
 void SerialRepeater::own(const LineBurst& burst) {
   absorb_passed();
   own_.push_back(burst);
+  own_end_ = burst.end();
   prune();
   // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
   // without its walk. The telegram; then, when nothing of the background begins after its

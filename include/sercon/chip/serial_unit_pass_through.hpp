@@ -69,7 +69,7 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
 // or TxD (every way into them absorbs first), so only the listener's own are left.
 inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Time at) {
   const sim::Time now = scheduler_.now();
-  if (!own_.empty() && own_.back().end() > now) return false;
+  if (own_end_ > now) return false;
   const bool after = !forwarded_.empty();
   if (after ? forwarded_.back().leaves >= at
             : background_.empty() || background_.back().since >= at) {
@@ -151,7 +151,7 @@ inline bool SerialRepeater::would_pass(sim::Time leaves) const {
   if (!repon_ || unit_.bit_period() == 0) return false;
   // What prune() would leave: no own telegram not yet over (they end in order), and the
   // background never pruned empty. Nothing is kept, so nothing needs pruning here.
-  if (!own_.empty() && own_.back().end() > scheduler_.now()) return false;
+  if (own_end_ > scheduler_.now()) return false;
   // After read hops' bursts forwarded unbooked TxD holds as it did for those: only its
   // listener is left to ask.
   if (!forwarded_.empty()) return forwarded_.back().leaves < leaves;

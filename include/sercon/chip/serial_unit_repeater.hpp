@@ -88,6 +88,9 @@ class SerialRepeater {
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
   sim::CircularQueue<RxdSegment> background_;
   sim::CircularQueue<LineBurst> own_;  // own telegrams not yet over, in time order
+  // The end of the last own telegram (0 after a reset): while it is to come, own_ holds it
+  // as its back; once past, nothing of its own is in the way (asked at every hop).
+  sim::Time own_end_ = 0;
   // Read hops' bursts passed on (as they reach TxD's listener, and when they leave TxD) and not yet
   // booked, in time order, all after background_'s last. One whose successor has reached TxD's
   // listener by now goes unbooked: the repeater, TxD and the listener would have dropped it then.
