@@ -74,6 +74,11 @@ void SerialReceiver::set_lazy_hops(bool on) {
 void SerialReceiver::refresh_hop_period() {
   const bool on = lazy_hops_ && unit_.running() && unit_.repeater().on();
   hop_period_ = on ? unit_.bit_period() : 0;
+  // forward_time() of a burst that hops (after now, so after time 0): ceil_SCLK(start + 2 bits).
+  const SerialRepeater& repeater = unit_.repeater();
+  hop_sclk_ = repeater.sclk_period();
+  hop_by_sclk_ = repeater.by_sclk();
+  hop_due_ = SerialUnit::kRepeaterDelayBits * hop_period_ + hop_sclk_ - 1;
   hop_lag_ = report_lag(hop_period_);
 }
 
@@ -107,8 +112,8 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   if (wants_a_report(b) || !recactn_.idle()) return false;
   // After everything announced before (nothing superseded or cut) and between good signals
   // (the line monitor hears nothing): announce() would only keep it.
-  SerialRepeater& repeater = unit_.repeater();
-  const sim::Time leaves = repeater.forward_time(b.start);
+  const auto due = static_cast<std::uint64_t>(b.start + hop_due_);
+  const sim::Time leaves = static_cast<sim::Time>(hop_by_sclk_.divide(due)) * hop_sclk_;
   const bool after_lazy = !lazy_.empty();
   if (after_lazy) {
     // After a lazy hop here nothing has changed the repeater or TxD (every way into them
@@ -128,7 +133,7 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
     const Entry& last = timeline_.back();
     if (last.segment.since >= b.start || !good(last.segment)) return false;
     if (last.segment.is_burst && b.start < last.cut) return false;
-    if (!repeater.would_pass(leaves)) return false;
+    if (!unit_.repeater().would_pass(leaves)) return false;
   }
   // The burst as it reaches the next receiver, kept (built in its place, every field set,
   // taken back if the listener refuses) and handed on.

@@ -27,6 +27,7 @@
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
+#include "sercon/sim/reciprocal.hpp"
 #include "sercon/sim/scheduler.hpp"
 
 namespace sercon::chip {
@@ -362,6 +363,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // at every hop).
   sim::Time hop_period_ = 0;
   sim::Time hop_lag_ = 0;  // report_lag(hop_period_): a lazy burst's reports_over
+  // The repeater's forward_time() for a hop, from these (set with hop_period_).
+  sim::Time hop_due_ = 0;
+  sim::Time hop_sclk_ = 1;
+  sim::Reciprocal hop_by_sclk_{1};
   HopCheck hop_check_ = HopCheck::None;
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken

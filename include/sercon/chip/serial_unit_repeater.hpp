@@ -54,6 +54,8 @@ class SerialRepeater {
   // When something that reaches RxD at `t` leaves on TxD.
   inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp
   bool on() const { return repon_; }
+  sim::Time sclk_period() const { return sclk_period_; }
+  const sim::Reciprocal& by_sclk() const { return by_sclk_; }
 
  private:
   void take_up_received();  // REPON on: the received line from now on
