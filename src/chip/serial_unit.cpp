@@ -101,11 +101,6 @@ void SerialUnit::on_register_change(std::uint8_t address) {
   }
 }
 
-sim::Time SerialUnit::next_bit_edge(sim::Time t) const {
-  if (bit_period_ == 0 || t <= 0) return t;
-  return (t + bit_period_ - 1) / bit_period_ * bit_period_;
-}
-
 sim::Time SerialUnit::send(sim::Time start, std::uint8_t address,
                            std::span<const std::uint8_t> data) {
   return transmitter_->send(start, address, data);

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "sercon/chip/serial_unit_transmitter.hpp"
 #include "sercon/chip/telegram_header.hpp"
 
 namespace sercon::chip {
@@ -30,12 +31,13 @@ bool MasterMst::send() {
   time_base_.cancel(window_end_);
   window_end_ = 0;
   const sim::Time now = time_base_.scheduler().now();
-  if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmit_free_at()) {
+  // The transmitter itself (SerialUnit's send and transmit_free_at are calls into it).
+  if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmitter().free_at()) {
     ram_.count_error(telegram::kNmsterr);
     return false;
   }
   const std::array<std::uint8_t, 1> phase{static_cast<std::uint8_t>(phas0_.get(regs_))};
-  serial_.send(now, 0xFF, phase);
+  serial_.transmitter().send(now, 0xFF, phase);
   out_ = true;
   judged_ = false;
   if (jtrdel2_.get(regs_) != 0) {

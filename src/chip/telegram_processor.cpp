@@ -1,6 +1,7 @@
 #include "sercon/chip/telegram_processor.hpp"
 
 #include "sercon/chip/required_unit.hpp"
+#include "sercon/chip/serial_unit_transmitter.hpp"
 
 namespace sercon::chip {
 namespace {
@@ -245,7 +246,8 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
   const bool flag_gated = address_flag_phase();
   if (flag_gated && !flmdtadr_.on(regs_)) return;
   const sim::Time now = scheduler_.now();
-  if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmit_free_at()) {
+  // The transmitter itself (SerialUnit's send and transmit_free_at are calls into it).
+  if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmitter().free_at()) {
     ++skipped_;
     return;
   }
@@ -257,7 +259,7 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
   // fall back to CP0..2.
   if (chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_)) flmdtadr_.set(regs_, false);
   const auto data = transmit_.gather(item, val, port());
-  const sim::Time end = serial_.send(now, item.adr(), data);
+  const sim::Time end = serial_.transmitter().send(now, item.adr(), data);
   // The previous telegram's end may be due at this very instant: raise it now.
   if (scheduler_.cancel(tend_event_)) interrupts_.raise(Irq::Tend);
   tend_event_ = scheduler_.at(end, &TelegramProcessor::transmission_ended, this);

@@ -21,13 +21,12 @@ struct FieldRef {
     return static_cast<std::uint16_t>((regs.field_value(address) & mask) >> lsb);
   }
   bool on(const RegisterFile& regs) const { return (regs.field_value(address) & mask) != 0; }
-  // Chip-side writes (status bits, watchdog clearing ENTMT/PHAS0); no-ops when absent.
+  // Chip-side writes (status bits, watchdog clearing ENTMT/PHAS0); no-ops when absent
+  // (mask 0 changes no bit, so put_field returns at once: no test of present() needed).
   void put(RegisterFile& regs, std::uint16_t value) const {
-    if (present()) regs.put_field(address, mask, static_cast<std::uint16_t>(value << lsb));
+    regs.put_field(address, mask, static_cast<std::uint16_t>(value << lsb));
   }
-  void set(RegisterFile& regs, bool on) const {
-    if (present()) regs.set_field_bits(address, mask, on);
-  }
+  void set(RegisterFile& regs, bool on) const { regs.set_field_bits(address, mask, on); }
 };
 
 // The field called `name` in `variant`; a FieldRef with mask 0 when the variant lacks it

@@ -135,8 +135,12 @@ class SerialUnit : public ChipUnit {
   sim::Time bit_period() const { return bit_period_; }
 
   // First TxC edge at or after t: the transmit bit clock ticks at k * bit_period() from
-  // time 0 (SCLK grid), and a telegram can only begin on a tick.
-  sim::Time next_bit_edge(sim::Time t) const;
+  // time 0 (SCLK grid), and a telegram can only begin on a tick. Inline: asked twice for
+  // every telegram sent.
+  sim::Time next_bit_edge(sim::Time t) const {
+    if (bit_period_ == 0 || t <= 0) return t;
+    return (t + bit_period_ - 1) / bit_period_ * bit_period_;
+  }
 
   // --- transmitter (the telegram processor's side) ---------------------------------------
   // Sends address + data as one telegram whose opening flag starts at the first TxC edge at
