@@ -24,12 +24,14 @@ ConClk::ConClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
       pin_(std::move(pin)),
       polconclk_(field_ref("POLCONCLK", regs_.variant())),
       end_(time_base.scheduler(), time_base.mclk(), [this] { ends(); }) {
-  time_base_.on_cycle_start(this, [](void* con_clk, const CycleStart& start) {
+  listener_ = time_base_.on_cycle_start(this, [](void* con_clk, const CycleStart& start) {
     static_cast<ConClk*>(con_clk)->plan(start);
   });
+  refresh_idle();
   // A reset's polarity is driven by reset(), which ends a pulse in progress first.
   regs_.on_change([this](std::uint8_t address) {
     if (address == polconclk_.address && !regs_.resetting()) drive();
+    if (address == kWconclk) refresh_idle();
   });
 }
 
@@ -39,6 +41,12 @@ void ConClk::reset(ResetCause) {
   end_.cancel();
   active_ = false;
   drive();
+  refresh_idle();
+}
+
+void ConClk::refresh_idle() {
+  time_base_.set_cycle_listener_idle(listener_,
+                                     width_ == 0 && planned_ == 0 && regs_.value(kWconclk) == 0);
 }
 
 void ConClk::plan(const CycleStart& start) {
@@ -48,7 +56,7 @@ void ConClk::plan(const CycleStart& start) {
   // Taken now, as TCONCLK: a WCONCLK written within the cycle acts from the next cycle start
   // (a 0 written after this plan would otherwise give a zero-width pulse with INT_CONCLK).
   width_ = regs_.value(kWconclk);
-  if (width_ == 0 || at >= cycle_end) return;
+  if (width_ == 0 || at >= cycle_end) return refresh_idle();
   planned_ = time_base_.at_cycle_time(at, [this] { starts(); });
 }
 

@@ -26,19 +26,22 @@ DivClk::DivClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
       poldivclk_(field_ref("POLDIVCLK", regs_.variant())),
       divclkmode_(field_ref("DIVCLKMODE", regs_.variant())),
       end_(time_base.scheduler(), time_base.mclk(), [this] { pulse_ends(); }) {
-  time_base_.on_cycle_start(this, [](void* div_clk, const CycleStart& start) {
+  listener_ = time_base_.on_cycle_start(this, [](void* div_clk, const CycleStart& start) {
     static_cast<DivClk*>(div_clk)->plan(start);
   });
+  refresh_idle();
   // A new polarity shows at once, also on an idle output (a reset's is driven by reset(),
   // which ends a pulse in progress first).
   regs_.on_change([this](std::uint8_t address) {
     if (address == poldivclk_.address && !regs_.resetting()) drive();
+    if (address == ndivclk_.address) refresh_idle();
   });
   // Delta spec 2.7: a programming of NDIVCLK != 0 restarts mode 1 "after the first cycle",
   // also when the 0 before it lasted less than a cycle: every moment the register holds
   // NDIVCLK = 0 (or mode 0) re-arms, not only a cycle start that sees it.
   regs_.on_write(ndivclk_.address, [this](std::uint16_t, std::uint16_t) {
     if (ndivclk_.get(regs_) == 0 || !divclkmode_.on(regs_)) first_due_ = true;
+    refresh_idle();
   });
 }
 
@@ -50,6 +53,12 @@ void DivClk::reset(ResetCause) {
   first_due_ = true;
   cycles_since_pulse_ = 0;
   drive();
+  refresh_idle();
+}
+
+void DivClk::refresh_idle() {
+  time_base_.set_cycle_listener_idle(listener_,
+                                     planned_.empty() && first_due_ && ndivclk_.get(regs_) == 0);
 }
 
 void DivClk::plan(const CycleStart& start) {
@@ -57,7 +66,7 @@ void DivClk::plan(const CycleStart& start) {
   const std::int64_t n = ndivclk_.get(regs_);
   if (n == 0) {  // delta spec 2.7: "0 Never becomes active"
     first_due_ = true;
-    return;
+    return refresh_idle();
   }
   plan_pulses(start, n);
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -339,6 +340,34 @@ TEST(TimeBase, CycleStartListenersHearTheCounterAsItReads) {
     EXPECT_EQ(heard.starts[0], std::make_pair(CycleKind::Mst, std::int64_t{9})) << mclkst;
     EXPECT_EQ(heard.starts[1].first, CycleKind::Substitute) << mclkst;
   }
+}
+
+// Listeners are fixed before the first cycle start (the time base walks them without
+// looking back at their vector): one added from a listener is refused, the others still run.
+TEST(TimeBase, NoListenerIsAddedDuringACycleStart) {
+  TimingBench b(config_mhz(32));
+  b.chip.reg_write(kTscyc0, 50);
+  struct Adder {
+    TimeBase* time_base;
+    int refused = 0;
+    int heard = 0;
+    static void hear(void* adder, const CycleStart&) {
+      auto& a = *static_cast<Adder*>(adder);
+      ++a.heard;
+      try {
+        a.time_base->on_cycle_start(adder, &Adder::hear);
+      } catch (const std::logic_error&) {
+        ++a.refused;
+      }
+    }
+  } adder{&b.time_base()};
+  b.time_base().on_cycle_start(&adder, &Adder::hear);
+  b.run_to(10 * kMicrosecond + 5);
+  b.cycles().mst_detected(b.now());
+  b.run_to(20 * kMicrosecond);
+  EXPECT_GE(adder.heard, 1);
+  EXPECT_EQ(adder.refused, adder.heard);
+  b.time_base().on_cycle_start(&adder, &Adder::hear);  // outside a cycle start: taken
 }
 
 // The function + context form (no std::function) keeps the same times, order and slots

@@ -36,6 +36,8 @@ class ConClk : public ChipUnit {
   void starts();
   void ends();
   void drive();
+  // The cycle start's plan changes nothing while WCONCLK = 0 and nothing is planned or taken.
+  void refresh_idle();
 
   TimeBase& time_base_;
   RegisterFile& regs_;
@@ -46,6 +48,7 @@ class ConClk : public ChipUnit {
   std::int64_t width_ = 0;  // WCONCLK (µs) taken at the cycle start
   TimeBase::CycleEvent planned_ = 0;
   TickAlarm end_;
+  TimeBase::CycleListenerId listener_ = 0;
 };
 
 }  // namespace sercon::chip

@@ -41,6 +41,9 @@ class DivClk : public ChipUnit {
   void pulse_starts();
   void pulse_ends();
   void drive();
+  // The cycle start's plan changes nothing while NDIVCLK = 0, nothing is planned and mode 1
+  // is re-armed.
+  void refresh_idle();
 
   TimeBase& time_base_;
   RegisterFile& regs_;
@@ -52,6 +55,7 @@ class DivClk : public ChipUnit {
   std::int64_t cycles_since_pulse_ = 0;
   std::vector<TimeBase::CycleEvent> planned_;
   TickAlarm end_;
+  TimeBase::CycleListenerId listener_ = 0;
 };
 
 }  // namespace sercon::chip

@@ -116,9 +116,15 @@ class TimeBase : public ChipUnit {
 
   // `listener(context, start)` at every cycle start, in the order registered. A function
   // and a context, not a std::function: the listeners are the chip's units, fixed at
-  // construction, and run at every cycle start of every chip.
+  // construction, and run at every cycle start of every chip. std::logic_error when called
+  // from a listener during a cycle start.
   using CycleListener = void (*)(void* context, const CycleStart& start);
-  void on_cycle_start(void* context, CycleListener listener);
+  using CycleListenerId = std::size_t;
+  CycleListenerId on_cycle_start(void* context, CycleListener listener);
+  // A listener whose cycle start would change nothing in its present state (CON_CLK and
+  // DIV_CLK unused, the usual case) is not called while it says so; it must say otherwise
+  // the moment that may change (a register write, say), also during a cycle start.
+  void set_cycle_listener_idle(CycleListenerId id, bool idle) { cycle_listeners_[id].idle = idle; }
   // MCLKDIV changed, registered at MCLK edge `edge`; `period` is the new MCLKDIV + 1.
   void on_divider_change(std::function<void(Edge edge, std::int64_t period)> listener);
 
@@ -171,8 +177,10 @@ class TimeBase : public ChipUnit {
   struct CycleStartListener {
     CycleListener listener;
     void* context;
+    bool idle = false;
   };
   std::vector<CycleStartListener> cycle_listeners_;
+  bool starting_ = false;  // the cycle-start listeners run
   std::vector<std::function<void(Edge, std::int64_t)>> divider_listeners_;
 };
 
