@@ -224,11 +224,12 @@ TEST(MclkGrid, NthEdgeAfterMatchesTheGeneralFormula) {
   const std::vector<std::int64_t> clocks{16'000'000, 32'000'000,   64'000'000, 33'000'000,
                                          1,          sim::kSecond, 244'140'625};
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
   const std::vector<std::int64_t> counts{
       0, 1, 3, 4, MclkGrid::kFewEdges - 1, MclkGrid::kFewEdges, MclkGrid::kFewEdges + 1, -1};
   for (const std::int64_t hz : clocks) {
     const MclkGrid grid(hz);
-    std::vector<Time> times{0, 1, 2, -1, kMax, kMax - 1, std::int64_t{1} << 62};
+    std::vector<Time> times{0, 1, 2, -1, kMax, kMax - 1, std::int64_t{1} << 62, kMin, kMin + 1};
     const auto around = [&times](Time at) {  // the edge at `at` and both sides of it
       times.insert(times.end(), {at - 1, at});
       if (at < kMax) times.push_back(at + 1);

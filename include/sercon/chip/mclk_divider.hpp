@@ -43,7 +43,7 @@ class MclkGrid {
   static constexpr Edge kFewEdges = 64;
   sim::Time nth_edge_after(sim::Time t, Edge n) const {
     // 0 < t <= exact_limit_: the edge is within exact_edges_, at edge * b.
-    if (static_cast<std::uint64_t>(t - 1) < exact_limit_ && n >= 0 && n <= kFewEdges) {
+    if (static_cast<std::uint64_t>(t) - 1 < exact_limit_ && n >= 0 && n <= kFewEdges) {
       const auto u = static_cast<std::uint64_t>(t);
       const QuotRem d = by_den(u);
       return static_cast<sim::Time>((d.quot + (d.rem != 0) + static_cast<std::uint64_t>(n)) * den_);
