@@ -102,6 +102,75 @@ TEST(Fibre, RefusesMalformedChangesOrChangesBeforeNow) {
   EXPECT_EQ(far.events[1].at, 999 + 5000);
 }
 
+// Lazy hops (line.hpp LineListener::pass_through, docs/serial-and-ring.md "Lazy hops"): a
+// whole fibre without bit errors takes a burst by pass_through and hands it back as it
+// reaches the far end (same bits and bit period, start moved by the delay), booking it only
+// when its history is read (the sender's book_all, before anything else enters). It refuses,
+// taking nothing, what line_burst() would refuse, a broken or erring fibre, and a burst of
+// a second sender while the first one's bursts wait unbooked.
+class Sender final : public chip::PassedBursts {
+ public:
+  explicit Sender(Fibre& f) : fibre_(f) {}
+  void book_all() override {
+    ++asked;
+    for (const LineBurst& b : passed) fibre_.input().book_passed(b);
+    passed.clear();
+  }
+  std::vector<LineBurst> passed;  // taken by the fibre, not yet booked
+  int asked = 0;
+
+ private:
+  Fibre& fibre_;
+};
+
+TEST(Fibre, PassThroughTakesOnlyWhatItCanPassOnUnchanged) {
+  sim::Scheduler s;
+  Fibre f(s, 2.0);  // 10 ns
+  Recorder far(s);
+  f.connect(far);
+  Sender first(f), second(f);
+  const auto bits = telegram_bits(1, kData);
+  chip::LineListener* next = nullptr;
+  const LineBurst* out = nullptr;
+  const auto pass = [&](const LineBurst& b, Sender& sender) {
+    next = nullptr;
+    out = nullptr;
+    const bool taken = f.input().pass_through(b, next, out, sender);
+    if (taken) sender.passed.push_back(b);
+    return taken;
+  };
+  s.run_until(1'000);
+  EXPECT_FALSE(pass(LineBurst{2'000, 62'500, nullptr}, first));  // no bits
+  EXPECT_FALSE(pass(LineBurst{2'000, 0, bits}, first));          // no bit period
+  EXPECT_FALSE(pass(LineBurst{999, 62'500, bits}, first));       // before now
+  EXPECT_EQ(next, nullptr);
+  ASSERT_TRUE(pass(LineBurst{2'000, 62'500, bits}, first));
+  EXPECT_EQ(next, &far);
+  ASSERT_NE(out, nullptr);
+  EXPECT_EQ(out->start, 12'000);
+  EXPECT_EQ(out->bit_period, 62'500);
+  EXPECT_EQ(out->bits.get(), bits.get());
+  // Another sender while the first one's burst waits: refused, nothing asked of anyone.
+  EXPECT_FALSE(pass(LineBurst{3'000'000, 62'500, bits}, second));
+  EXPECT_EQ(first.asked, 0);
+  // What enters next has the first sender book its bursts before it.
+  f.input().line_condition(5'000'000, LineCondition::Dark, 0);
+  EXPECT_EQ(first.asked, 1);
+  EXPECT_TRUE(first.passed.empty());
+  ASSERT_TRUE(pass(LineBurst{6'000'000, 62'500, bits}, second));  // booked: free again
+  f.input().line_condition(7'000'000, LineCondition::Dark, 0);
+  EXPECT_EQ(second.asked, 1);
+  f.set_bit_error_rate(0.5, 1);
+  EXPECT_FALSE(pass(LineBurst{8'000'000, 62'500, bits}, first));  // errors: the full path
+  f.set_bit_error_rate(0.0, 1);
+  f.break_at(9'000'000);
+  s.run_until(9'000'000);
+  EXPECT_FALSE(pass(LineBurst{9'500'000, 62'500, bits}, first));  // broken
+  f.restore_at(9'600'000);
+  s.run_until(9'600'000);
+  EXPECT_TRUE(pass(LineBurst{9'700'000, 62'500, bits}, first));
+}
+
 // Docs "Fibre": a fibre schedules nothing; each announcement goes to the far end at once
 // (line.hpp "The later word wins"). A Dark announced after a telegram, for a time inside
 // it, cuts it there at the far end; a telegram overtaken before it starts never arrives.
