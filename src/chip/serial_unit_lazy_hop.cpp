@@ -144,12 +144,14 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   kept.leaves = leaves;
   kept.ends = b.start + static_cast<sim::Time>(b.bits->size()) * b.bit_period;
   kept.reports_over = kept.ends + hop_lag_;  // report_lag(b.bit_period)
+  // Set by the listener; set here too, so the entry is whole even if a listener throws.
+  kept.reaching.start = leaves;
   TxdOutputs& txd = unit_.outputs();
   if (!txd.follower_takes_into(leaves, kept.reaching, next)) {
     lazy_.pop_back();
     return false;
   }
-  if (!after_lazy) txd.set_follower_delay(kept.reaching.start - leaves);  // as pass_through()
+  if (!after_lazy) txd.set_follower_delay(kept.reaching.start - leaves);  // as line_burst()
   out = &kept.reaching;
   ++lazy_hops_taken_;
   return true;

@@ -144,7 +144,11 @@ bool TxdOutputs::follower_takes_copy(sim::Time leaves, LineBurst& into, LineList
   const LineBurst leaving{leaves, into.bit_period, into.bits};
   const LineBurst* out = nullptr;
   if (!lone_follower_->pass_through(leaving, next, out, *this)) return false;
-  into = *out;
+  // The caller books its own bits later (absorb): a listener must pass them on unchanged.
+  if (out->bits != into.bits || out->bit_period != into.bit_period) {
+    throw std::logic_error("TxD: a listener's pass_through changed the burst it passed on");
+  }
+  into.start = out->start;
   return true;
 }
 

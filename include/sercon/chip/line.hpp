@@ -91,7 +91,8 @@ class LineListener {
   // as line_burst() would and, instead of telling that one, hand it back: `next` and the
   // burst as it reaches `next`, for the caller to deliver at once (`out` points into the
   // listener, valid until it is told anything else: no copy of the bits per hop; it has the
-  // burst's bits and bit period, so `next` need not check them again). False
+  // burst's own bits and bit period, only its start later, so `next` need not check them
+  // again and a sender may keep its own copy instead). False
   // (the default): nothing was taken, call line_burst(). Taken, the burst need not be
   // booked yet: `sender` keeps it and books it by book_passed() when the listener asks
   // (PassedBursts::book_all), or before it tells the listener anything else.
@@ -104,8 +105,10 @@ class LineListener {
   // line_burst() would have booked it then, telling no one.
   virtual void book_passed(const LineBurst& burst) { (void)burst; }
 
-  // A chip's receiver (null for every other listener): a chain of lazy hops goes on from
-  // receiver to receiver in one loop rather than a call per hop (SerialReceiver::line_burst).
+  // A chip's receiver, set only by the receiver itself (null for every other listener, a
+  // wrapper around a receiver too): a chain of lazy hops goes on from receiver to receiver
+  // in one loop, calling the next receiver's checks in place of its line_burst()
+  // (SerialReceiver::line_burst), so what it names must be the listener itself.
   SerialReceiver* receiver() const { return receiver_; }
   // A plain link's input (null for every other listener): its pass_through is data a
   // sender asks inline (plain_link.hpp).
