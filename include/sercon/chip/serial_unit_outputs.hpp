@@ -49,15 +49,10 @@ class TxdOutputs final : public PassedBursts {
   inline void line_burst(const LineBurst& burst);  // serial_unit_pass_through.hpp
 
   // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
-  // burst is announced after everything before it, the listener may take it and hand it on
-  // (LineListener::pass_through); the line itself takes the burst later, by absorb(), and
-  // until then nothing else here may read it (the repeater's absorb_passed() comes first).
-  // Inline (serial_unit_pass_through.hpp).
-  inline bool pass_through(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
-  // The lone follower's pass_through alone: TxD's checks hold as they did for a burst passed
-  // before and not yet absorbed.
-  inline bool follower_pass_through(const LineBurst& burst, LineListener*& next,
-                                    const LineBurst*& out);
+  // burst is announced after everything before it (would_pass), the listener may take it and
+  // hand it on (LineListener::pass_through); the line itself takes the burst later, by
+  // absorb(), and until then nothing else here may read it (the repeater's absorb_passed()
+  // comes first).
   // The lone follower's pass_through alone, nothing else set: inline when it is a plain
   // link (a ring's fibre), else by its call. What TxD hands on was checked where it came in
   // (bits, a bit period, not before now), so the link does not check it again.
@@ -71,7 +66,7 @@ class TxdOutputs final : public PassedBursts {
     if (lone_link_ != nullptr) return lone_link_->pass_at(leaves, *this, next, into.start);
     return follower_takes_copy(leaves, into, next);
   }
-  // pass_through()'s checks alone, for a burst leaving at `leaves`.
+  // TxD's own conditions for passing a burst leaving at `leaves` to the lone follower.
   inline bool would_pass(sim::Time leaves) const;  // serial_unit_pass_through.hpp
   void set_follower_delay(sim::Time delay) { follower_delay_ = delay; }
   // How long after leaving a burst the lone follower took reaches the listener behind it.

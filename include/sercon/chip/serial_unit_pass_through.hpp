@@ -65,8 +65,10 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   if (dropped || line_.size() < 2 || is_dark(line_[line_.size() - 2])) plan_pins();
 }
 
-// pass_through's checks; after a burst forwarded unbooked nothing has changed the repeater
-// or TxD (every way into them absorbs first), so only the listener's own are left.
+// A read hop's burst handed on unbooked when the repeater's and TxD's conditions allow
+// (would_pass) and the lone follower takes it. After a burst forwarded unbooked nothing has
+// changed the repeater or TxD (every way into them absorbs first): only the listener's own
+// conditions are left.
 inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Time at) {
   const sim::Time now = scheduler_.now();
   if (own_end_ > now) return false;
@@ -133,18 +135,6 @@ inline bool TxdOutputs::would_pass(sim::Time leaves) const {
   if (lone_follower_ == nullptr) return false;
   const RxdSegment& last = line_.back();
   return last.since < leaves && (last.is_burst || last.condition != LineCondition::Dark);
-}
-
-inline bool TxdOutputs::pass_through(const LineBurst& burst, LineListener*& next,
-                                     const LineBurst*& out) {
-  return would_pass(burst.start) && follower_pass_through(burst, next, out);
-}
-
-inline bool TxdOutputs::follower_pass_through(const LineBurst& burst, LineListener*& next,
-                                              const LineBurst*& out) {
-  if (!follower_takes(burst, next, out)) return false;
-  follower_delay_ = out->start - burst.start;
-  return true;
 }
 
 inline bool SerialRepeater::would_pass(sim::Time leaves) const {

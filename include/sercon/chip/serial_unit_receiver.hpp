@@ -62,7 +62,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // repeater, TxD and the fibre behind too (the
   // results are the same; the tests compare both).
   void set_lazy_hops(bool on);
-  // After the unit's running state or bit period changes (SerialUnit), at once.
+  // After the unit's running state or bit period changes (SerialUnit) or REPON does (the
+  // repeater), at once: the lazy hops' period, SCLK step and report lag, kept here.
   void refresh_hop_period();
   void absorb_lazy() {
     if (!lazy_.empty()) absorb_waiting();  // inline: asked before every change, mostly none

@@ -16,7 +16,8 @@ namespace sercon::chip::receiver_detail {
 
 constexpr sim::Time kNever = LazyPin::kNever;
 // Longest chain of receivers one announcement may run through at once: more than a ring of
-// 255 nodes needs, far less than the stack allows.
+// 255 nodes needs, far less than the stack allows (the full path's hops nest calls; a lazy
+// chain's turns of one loop count as hops too).
 constexpr int kMaxChain = 600;
 inline thread_local int chain_depth = 0;  // receivers in the chain now
 

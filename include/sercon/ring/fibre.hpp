@@ -100,6 +100,8 @@ class Fibre {
   sim::Time delay_;
   // Lazy hops: whole, without bit errors and connected, a burst passes through (asked at
   // every hop); the bursts passed through and not yet booked are held by their sender.
+  // It keeps its own copies of delay_ and output_ (set with them), so that a sender's TxD
+  // asks it inline without knowing the fibre.
   chip::PlainLink link_;
   Input input_{*this};
   chip::LineListener* output_ = nullptr;

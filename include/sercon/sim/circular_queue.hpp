@@ -3,7 +3,8 @@
 // instructions, with no moving of the rest as a steady stream passes through. For the
 // short timelines a telegram passes through at every hop: a repeater's, a TxD line's, a
 // fibre's history (docs/performance.md, "Ring"). A slot not in use holds T{}: a taken
-// element lets go of what it holds at once.
+// element lets go of what it holds at once; except after drop_front(), which leaves the
+// slot as it was until a push overwrites it (for a queue whose pushes set every field).
 #pragma once
 
 #include <cstddef>
@@ -42,7 +43,8 @@ class CircularQueue {
 
   void push_back(const T& item) { emplace_back(item); }
   void push_back(T&& item) { emplace_back(std::move(item)); }
-  // With no arguments: the new back is T{} (the free slot as it is). An argument may be an
+  // With no arguments: the new back is the free slot as it is (T{}, unless drop_front() left
+  // it; such a queue pushes by reuse_back() and sets all of it). An argument may be an
   // element of this queue: when the buffer must grow, the value is built before it moves.
   template <class... Args>
   T& emplace_back(Args&&... args) {
@@ -78,9 +80,10 @@ class CircularQueue {
       grow();
     return next_slot();
   }
+  // The front stays where it is, so the pushes that follow go on round the buffer and
+  // overwrite, within one turn, what drop_front() left in the slots behind it.
   void clear() {
     while (size_ > 0) pop_back();
-    head_ = 0;
   }
 
  private:
