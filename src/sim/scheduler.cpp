@@ -107,25 +107,79 @@ void Scheduler::SortedRun::remove(Time when, std::uint32_t slot, std::uint32_t g
   --tail;
 }
 
+// Takes a pending event's entry out of far_ (it is there), keeping the others' order.
+void Scheduler::LaterEntries::remove(std::uint32_t slot, std::uint32_t generation) {
+  const auto at = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
+    return e.slot == slot && e.generation == generation;
+  });
+  entries.erase(at);
+}
+
+// near_'s first n entries, in order up to `sorted`, sorted by time, stably (same-time
+// entries keep their order). They come as a few runs in order (those queued one cycle and
+// the next): each run is merged into those before it, into scratch_, which then becomes
+// near_'s buffer; a run wholly earlier than those before it simply goes first. More runs
+// than that take a merge sort.
+void Scheduler::sort_near(std::size_t sorted, std::size_t n) {
+  const auto earlier = [](const Entry& a, const Entry& b) { return a.when < b.when; };
+  Entry* first = near_.buffer.data();
+  for (int runs = 1; sorted != n; ++runs) {
+    if (runs == kMergedRuns) {
+      std::stable_sort(first, first + n, earlier);
+      return;
+    }
+    const std::size_t run_end =
+        static_cast<std::size_t>(std::is_sorted_until(first + sorted, first + n, earlier) - first);
+    if (scratch_.size() < near_.buffer.size()) scratch_.resize(near_.buffer.size());
+    Entry* merged = scratch_.data();
+    if (first[run_end - 1].when < first[0].when) {
+      merged = std::copy(first + sorted, first + run_end, merged);
+      merged = std::copy(first, first + sorted, merged);
+    } else {
+      // On equal times std::merge takes the first range's entry: the one queued first.
+      merged = std::merge(first, first + sorted, first + sorted, first + run_end, merged, earlier);
+    }
+    std::copy(first + run_end, first + n, merged);  // the runs still to merge
+    near_.buffer.swap(scratch_);
+    first = near_.buffer.data();
+    sorted = run_end;
+  }
+}
+
 // near_ is empty: move the limit past the earliest far entry and bring the entries up
-// to it over (those of cancelled events stay behind).
+// to it over, sorted by time (those of cancelled events are dropped).
 void Scheduler::refill() {
-  const Time earliest = far_.buffer[far_.head].when;
+  std::vector<Entry>& later = far_.entries;
+  // far_.earliest may be a cancelled entry's time, never later than the earliest live one:
+  // then fewer move (maybe none: front() comes back with the limit worked out here).
+  const Time earliest = far_.earliest;
   near_limit_ = earliest > std::numeric_limits<Time>::max() - (kHorizon - 1)
                     ? std::numeric_limits<Time>::max()
                     : earliest + (kHorizon - 1);
   near_.head = near_.tail = 0;
-  // The entries up to the limit, then room for all of them at once: no check per entry.
-  std::size_t last = far_.head;
-  while (last != far_.tail && far_.buffer[last].when <= near_limit_) ++last;
-  if (near_.buffer.size() < last - far_.head) near_.buffer.resize(last - far_.head);
-  Entry* to = near_.buffer.data();
-  for (const Entry* from = far_.buffer.data() + far_.head; from != far_.buffer.data() + last;
-       ++from) {
-    if (slots_[from->slot].generation == from->generation) *to++ = *from;
+  if (near_.buffer.size() < later.size()) near_.buffer.resize(later.size());
+  // The live entries up to the limit to near_, the others stay, both in order; then near_
+  // sorted by time, stably (mostly they come in order already).
+  Entry* const first = near_.buffer.data();
+  Entry* to = first;
+  Entry* in_order_end = nullptr;  // the first entry out of order, if any
+  Time stays_earliest = std::numeric_limits<Time>::max();
+  auto stay = later.begin();
+  for (const Entry& entry : later) {
+    if (slots_[entry.slot].generation != entry.generation) continue;  // cancelled
+    if (entry.when <= near_limit_) {
+      if (in_order_end == nullptr && to != first && entry.when < to[-1].when) in_order_end = to;
+      *to++ = entry;
+    } else {
+      stays_earliest = std::min(stays_earliest, entry.when);
+      *stay++ = entry;
+    }
   }
-  near_.tail = static_cast<std::size_t>(to - near_.buffer.data());
-  far_.head = last;
+  later.erase(stay, later.end());
+  far_.earliest = stays_earliest;
+  near_.tail = static_cast<std::size_t>(to - first);
+  if (in_order_end != nullptr)
+    sort_near(static_cast<std::size_t>(in_order_end - first), near_.tail);
 }
 
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
@@ -147,7 +201,11 @@ bool Scheduler::move(EventId id, Time when) {
   if (live_slot(id) == nullptr) return false;
   const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
   Slot& slot = slots_[index];
-  (slot.when <= near_limit_ ? near_ : far_).remove(slot.when, index, slot.generation);
+  if (slot.when <= near_limit_) {
+    near_.remove(slot.when, index, slot.generation);
+  } else {
+    far_.remove(index, slot.generation);
+  }
   slot.when = when;
   insert(when, index, slot.generation);
   return true;

@@ -2,8 +2,10 @@
 // scheduled, so a scenario replays identically (brief: determinism).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -149,6 +151,19 @@ class Scheduler {
     void remove(Time when, std::uint32_t slot, std::uint32_t generation);
     void make_room();
   };
+  // The entries due after near_limit_, in the order they were queued (far_ below).
+  struct LaterEntries {
+    std::vector<Entry> entries;
+    // No later than the earliest live entry (a cancelled one's may be earlier).
+    Time earliest = std::numeric_limits<Time>::max();
+
+    bool empty() const { return entries.empty(); }
+    void push_back(const Entry& entry) {
+      entries.push_back(entry);
+      earliest = std::min(earliest, entry.when);
+    }
+    void remove(std::uint32_t slot, std::uint32_t generation);
+  };
 
   // The first queue entry of a pending event, dropping those of cancelled ones; null when
   // nothing is pending.
@@ -163,11 +178,16 @@ class Scheduler {
     }
   }
   void refill();
-  // Inline: most new entries go at the back of a run that has room, and most of the others
-  // only a few places behind its front (few entries are due sooner): they walk there from
-  // the front, moving those few one place towards the entries that have run.
+  void sort_near(std::size_t sorted, std::size_t n);  // refill()'s entries, by time
+  static constexpr int kMergedRuns = 8;  // runs merged one by one; more: std::stable_sort
+  // Inline: most new entries go at the back of near_ when it has room, and most of the
+  // others only a few places behind its front (few entries are due sooner): they walk there
+  // from the front, moving those few one place towards the entries that have run. An entry
+  // due later goes at the back of far_, which is kept in scheduling order, not sorted.
   void insert(Time when, std::uint32_t slot, std::uint32_t generation) {
-    SortedRun& run = when <= near_limit_ ? near_ : far_;
+    if (when > near_limit_) [[unlikely]]
+      return far_.push_back(Entry{when, slot, generation});
+    SortedRun& run = near_;
     Entry* const data = run.buffer.data();
     if (run.tail == run.head || when >= data[run.tail - 1].when) {
       if (run.tail < run.buffer.size()) {
@@ -192,13 +212,16 @@ class Scheduler {
   // are due soon and land at or near the back of the short near_ run; the few due much
   // later (a cycle's window close) wait in far_ and do not make every placement move
   // them. When near_ runs empty, the limit moves to kHorizon - 1 after the earliest far
-  // entry and the entries up to it move over, in order. Same-time entries are always in
-  // one run, so they keep their order.
+  // entry and the entries up to it move over, sorted by time (a stable sort: same-time
+  // entries in the order they were queued). Same-time entries are always in one of the
+  // two, so they keep their order. far_ is not sorted: with hundreds of later events (a
+  // ring of 254 slaves) placing each in order moved half of them.
   // Only a matter of speed, never of order. 160 µs measured best on the 8-slave ring of
   // bench/ring_bench.cpp (250 µs cycle): 16 µs and 1 ms were both slower.
   static constexpr Time kHorizon = 160 * kMicrosecond;
   SortedRun near_;
-  SortedRun far_;
+  LaterEntries far_;
+  std::vector<Entry> scratch_;  // sort_near()'s (swapped with near_'s buffer)
   Time near_limit_ = -1;
   std::vector<Slot> slots_;
   std::uint32_t free_head_ = 0;  // index + 1 of the first free slot, 0: none
