@@ -131,7 +131,10 @@ TEST(Scheduler, NextTimeSkipsCancelledEventsAndRunsNothing) {
 // picosecond in the order they were scheduled (a moved event as if scheduled when moved),
 // however many are pending, whatever was cancelled or moved meanwhile, and whether they
 // are due soon or hundreds of µs ahead (the queue keeps soon and later events apart).
-TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
+// Far events wait unsorted and are sorted when they come near (scheduler.hpp): many seeds
+// and densities, so a refill meets one run in order, runs to merge, a run wholly earlier,
+// and more runs than it merges one by one.
+void run_interleaved_events(std::uint32_t seed, std::uint32_t most_per_round) {
   Scheduler s;
   struct Event {
     Time when;
@@ -141,7 +144,7 @@ TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
   };
   std::vector<Event> events;
   std::vector<std::pair<Time, std::size_t>> seen;
-  std::uint32_t random = 12345;
+  std::uint32_t random = seed;
   auto next_random = [&random](std::uint32_t range) {
     random = random * 1103515245u + 12345u;
     return (random >> 8) % range;
@@ -154,7 +157,7 @@ TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
   };
   int order = 0;
   for (int round = 0; round < 300; ++round) {
-    const std::uint32_t count = next_random(12);
+    const std::uint32_t count = next_random(most_per_round);
     for (std::uint32_t i = 0; i < count; ++i) {
       const Time when = ahead();
       const std::size_t k = events.size();
@@ -190,12 +193,19 @@ TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
     const Event& y = events[b];
     return x.when != y.when ? x.when < y.when : x.order < y.order;
   });
-  ASSERT_EQ(seen.size(), expected.size());
+  ASSERT_EQ(seen.size(), expected.size()) << "seed " << seed;
   for (std::size_t i = 0; i < seen.size(); ++i) {
-    EXPECT_EQ(seen[i].second, expected[i]) << "event " << i;
-    EXPECT_EQ(seen[i].first, events[expected[i]].when) << "event " << i;
+    ASSERT_EQ(seen[i].second, expected[i]) << "seed " << seed << ", event " << i;
+    ASSERT_EQ(seen[i].first, events[expected[i]].when) << "seed " << seed << ", event " << i;
   }
   EXPECT_EQ(s.pending_count(), 0u);
+}
+
+TEST(Scheduler, ManyInterleavedEventsRunInTimeThenSchedulingOrder) {
+  for (std::uint32_t seed = 1; seed <= 60; ++seed) {
+    run_interleaved_events(seed * 12345u, 12);
+    run_interleaved_events(seed * 7919u, 40);
+  }
 }
 
 // docs/timing.md, "Cycle-time events" (moved if MCLKDIV changes) and docs/architecture.md,
