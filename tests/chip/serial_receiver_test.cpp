@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "register_words.hpp"
+#include "sercon/chip/line_decode_memo.hpp"
 #include "serial_bench.hpp"
 
 namespace sercon::chip {
@@ -22,6 +23,7 @@ using testing::bit_period_of;
 using testing::config_at_mbit;
 using testing::kRecact;
 using testing::kSerCtrl;
+using testing::kSerMode;
 using testing::PinEdges;
 using testing::SerialBench;
 using testing::telegram_bits;
@@ -499,6 +501,88 @@ TEST(serial_Receiver, EveryFrameOfABurstIsReported) {
   ASSERT_EQ(ev.started.size(), 2u);
   EXPECT_EQ(ev.started[1].start, start2);
   EXPECT_EQ(ev.started[1].address, 0x12);
+}
+
+// serial_unit.hpp, ReceivedTelegram::frame: "Valid only during the on_telegram callback",
+// which is all of the callback (serial_unit_receiver.hpp: "prune() keeps [the entry whose
+// report's handler runs] (and so its bits, which the frame handed to the handler lives in)
+// until the handler returns"). A handler that resets the chip (SWRST, facts §5: a driver
+// writes 0x0002; the reset clears what the receiver decoded) and announces a change on
+// RxD (which prunes the timeline) before it reads the frame still reads its own telegram,
+// also after a new telegram has taken a released bits object and its decode's storage
+// (shared_bits.hpp, "Recycled"; under AddressSanitizer nothing is recycled and a read of
+// a released decode is a use after free).
+TEST(serial_Receiver, AnOnTelegramHandlerThatResetsAndPrunesStillReadsItsFrame) {
+  SerialBench b;
+  b.unit.set_interest(nullptr);  // every report, as Events does
+  const Time t = b.period();
+  const std::vector<std::uint8_t> other_data = {0x55, 0x66, 0x77};
+  std::vector<Got> got;
+  b.unit.on_telegram([&](const ReceivedTelegram& r) {
+    b.chip->reg_write(kSerMode, 0x0002);                                     // SWRST
+    b.unit.rxd().line_condition(b.scheduler.now(), LineCondition::Dark, 0);  // prunes
+    wire::LineEncoder encoder(true);  // another telegram made now (a transmitter's seed)
+    const wire::EncodedFrame where = encoder.telegram(0x22, other_data);
+    const SharedBits other = share_bits(encoder.take());
+    seed_decode(other, where, 0x22, other_data, encoder.fcs());
+    got.push_back({b.scheduler.now(), r.start, r.end, r.detected, r.frame});
+  });
+  // Only the receiver's timeline holds the bits; the line idles after the telegram.
+  std::size_t size = 0;
+  {
+    const auto bits = telegram_bits(0x05, kData);
+    size = bits->size();
+    b.unit.rxd().line_burst(LineBurst{0, t, bits});
+  }
+  const Time end = static_cast<Time>(size) * t;
+  b.unit.rxd().line_condition(end, LineCondition::Idle, t);
+  b.run_to(end + 100 * t);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].now, b.detection(end));
+  EXPECT_TRUE(got[0].frame.ok());
+  EXPECT_EQ(got[0].frame.address, 0x05);
+  EXPECT_EQ(got[0].frame.data, kData);
+  EXPECT_EQ(got[0].frame.end_bit, size);
+}
+
+// The same for the start report (serial_unit_receiver.hpp: the entry whose report's handler
+// runs is kept from prune() until the handler returns): an on_start handler that resets the
+// chip (SWRST) and announces changes on RxD that prune the timeline, the telegram coming in
+// cut at once. The telegram under way is not received ("Out of reset: the segment in force
+// was not received (no opening flag seen)", serial_unit_receiver.cpp, release): no
+// detection of it; the next telegram is reported whole, with its own data.
+TEST(serial_Receiver, AnOnStartHandlerThatResetsAndPrunesLeavesTheReceiverWhole) {
+  SerialBench b;
+  Events ev(b);
+  const Time t = b.period();
+  bool reset_done = false;
+  b.unit.on_telegram_start([&](Time start, std::uint8_t address) {
+    ev.started.push_back({b.scheduler.now(), start, address});
+    if (reset_done) return;
+    reset_done = true;
+    b.chip->reg_write(kSerMode, 0x0002);  // SWRST
+    const Time now = b.scheduler.now();
+    b.unit.rxd().line_condition(now, LineCondition::Dark, 0);      // cuts the telegram
+    b.unit.rxd().line_condition(now + t, LineCondition::Idle, t);  // prunes
+  });
+  b.unit.rxd().line_burst(LineBurst{0, t, telegram_bits(0x05, kData)});
+  const Time second = 1000 * t;
+  const auto bits = telegram_bits(0x06, kData);
+  b.run_to(second);
+  b.unit.rxd().line_burst(LineBurst{second, t, bits});
+  const Time end = second + static_cast<Time>(bits->size()) * t;
+  b.run_to(end + 100 * t);
+  ASSERT_EQ(ev.started.size(), 2u);
+  EXPECT_EQ(ev.started[0].address, 0x05);
+  EXPECT_EQ(ev.started[1].address, 0x06);
+  EXPECT_EQ(ev.started[1].start, second);
+  ASSERT_EQ(ev.got.size(), 1u);  // the second telegram only
+  EXPECT_TRUE(ev.got[0].frame.ok());
+  EXPECT_EQ(ev.got[0].frame.address, 0x06);
+  EXPECT_EQ(ev.got[0].frame.data, kData);
+  EXPECT_EQ(ev.got[0].start, second);
+  EXPECT_EQ(ev.got[0].end, end);
+  EXPECT_EQ(ev.got[0].detected, b.detection(end));
 }
 
 }  // namespace
