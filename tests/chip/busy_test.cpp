@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -268,6 +270,209 @@ TEST(Busy, ListItemsAreUsedWordByWord) {
     }
     list.stop();
   }
+}
+
+// What one gather left behind: the bytes (none after a fault), the accesses it made, the
+// words it used in the period (BUSYN against a µP access), and any list fault's message.
+struct Gathered {
+  std::vector<std::uint8_t> data;
+  std::uint64_t accesses = 0;
+  std::vector<std::uint16_t> busy_words;
+  std::string fault;
+  std::vector<std::pair<ServiceContainerUse, std::vector<std::uint16_t>>> service;
+};
+
+// A service-container engine that sees the words as read and replaces them (service
+// channel port: "the engine may replace them ... What it leaves there goes on the line").
+struct ReplacingPort final : ServiceChannelPort {
+  void before_transmit(const ServiceContainerUse& use, std::span<std::uint16_t> words) override {
+    seen.emplace_back(use, std::vector<std::uint16_t>(words.begin(), words.end()));
+    for (std::uint16_t& w : words) w = static_cast<std::uint16_t>(0xA000 | (w & 0x0FFF));
+  }
+  sim::Time after_receive(const ServiceContainerUse&, std::span<const std::uint16_t>,
+                          bool) override {
+    return 0;
+  }
+  std::vector<std::pair<ServiceContainerUse, std::vector<std::uint16_t>>> seen;
+};
+
+// A single-buffer transmit header (CYCL, address 1, TRT 20, TLEN `tlen`) at `header` with
+// the words after it, gathered at 100 ns (TransmitPath, docs/telegram-processing.md,
+// "Transmit" step 8).
+Gathered gather_at(std::uint16_t header, std::uint16_t tlen,
+                   const std::vector<std::uint16_t>& after) {
+  ChipOnBench bench(mclk(32'000'000));
+  Chip& chip = *bench.chip;
+  const std::vector<std::uint16_t> head{0x5001, 20, tlen, 0x0200};
+  for (std::size_t i = 0; i < head.size(); ++i)
+    chip.ram_write(static_cast<std::uint16_t>(header + i), head[i]);
+  for (std::size_t i = 0; i < after.size() && header + 4 + i < 2048; ++i)
+    chip.ram_write(static_cast<std::uint16_t>(header + 4 + i), after[i]);
+  bench.scheduler.run_until(100'000);
+  TelegramRam ram(chip);
+  DmaPort dma(chip);
+  TransmitPath path(ram, dma);
+  ReplacingPort port;
+  ListItem item;
+  item.kind = telegram::Kind::Transmit;
+  item.address = header;
+  item.word0 = head[0];
+  item.time = 20;
+  item.length = tlen;
+  item.next = 0x0200;
+  Gathered g;
+  const std::uint64_t before = chip.tp_ram_accesses();
+  try {
+    const std::span<const std::uint8_t> data = path.gather(item, false, port);
+    g.data.assign(data.begin(), data.end());
+  } catch (const ListFault& f) {
+    g.fault = f.what();
+  }
+  g.accesses = chip.tp_ram_accesses() - before;
+  g.service = port.seen;
+  BusCycle c;
+  c.mcsn0 = false;
+  c.mcsn1 = false;
+  c.bhen = false;
+  for (std::uint32_t w = header; w < 2048 && w < header + 4u + after.size(); ++w) {
+    c.address = static_cast<std::uint16_t>(2 * w);  // byte address of the word
+    if (chip.bus(c).busy) g.busy_words.push_back(static_cast<std::uint16_t>(w));
+  }
+  return g;
+}
+
+std::vector<std::uint16_t> word_range(std::uint16_t first, std::uint16_t last) {
+  std::vector<std::uint16_t> out;
+  for (std::uint32_t w = first; w <= last; ++w) out.push_back(static_cast<std::uint16_t>(w));
+  return out;
+}
+
+// The one-run gather takes only telegrams whose containers are all plain; one that starts
+// plain and then is not goes the per-container way from its first container, and must use
+// what that way uses: each control word and each container's data read once (no word of
+// the plain first container counted twice, none left out), at the same instant.
+//
+// Second container SVFL (datasheet 4.2.2; "through the service channel port where SVFL =
+// 1", docs/telegram-processing.md, "Transmit" step 8): the port sees its words as read, with
+// NSV, SCMASTER and the addresses of its control word and buffer, and what it leaves goes
+// out.
+TEST(Busy, APlainContainerThenAServiceContainerIsGatheredContainerByContainer) {
+  const std::uint16_t h = 0x0100;
+  // 3 plain words, then SVFL | NSV 2 | SCMASTER | LASTDC with 2 words, then a word after.
+  const Gathered g =
+      gather_at(h, 5, {0x0003, 0x1111, 0x2222, 0x3333, 0xD402, 0x4444, 0x5555, 0x7777});
+  EXPECT_EQ(g.fault, "");
+  const std::vector<std::uint8_t> expected{0x11, 0x11, 0x22, 0x22, 0x33,
+                                           0x33, 0x44, 0xA4, 0x55, 0xA5};
+  EXPECT_EQ(g.data, expected);
+  EXPECT_EQ(g.accesses, 7u);  // 2 control words, 3 + 2 data words
+  EXPECT_EQ(g.busy_words, word_range(h + 4, h + 10));
+  ASSERT_EQ(g.service.size(), 1u);
+  EXPECT_EQ(g.service[0].first.number, 2);
+  EXPECT_TRUE(g.service[0].first.master);
+  EXPECT_EQ(g.service[0].first.control_word, h + 8);
+  EXPECT_EQ(g.service[0].first.data_address, h + 9);
+  EXPECT_EQ(g.service[0].second, (std::vector<std::uint16_t>{0x4444, 0x5555}));
+}
+
+// Second container longer than TLEN allows: "the telegram carries exactly TLEN words
+// (container words beyond TLEN are dropped)" (docs/telegram-processing.md, "Transmit" step
+// 8); the container is read whole, as the per-container way reads it, and cut.
+TEST(Busy, APlainContainerThenOneBeyondTlenIsGatheredContainerByContainer) {
+  const std::uint16_t h = 0x0100;
+  const Gathered g =
+      gather_at(h, 4, {0x0003, 0x1111, 0x2222, 0x3333, 0x8002, 0x4444, 0x5555, 0x7777});
+  EXPECT_EQ(g.fault, "");
+  const std::vector<std::uint8_t> expected{0x11, 0x11, 0x22, 0x22, 0x33, 0x33, 0x44, 0x44};
+  EXPECT_EQ(g.data, expected);
+  EXPECT_EQ(g.accesses, 7u);
+  EXPECT_EQ(g.busy_words, word_range(h + 4, h + 10));
+  EXPECT_TRUE(g.service.empty());
+}
+
+// Second container's data past the RAM's end: a list fault ("a ... container or buffer
+// beyond the RAM", docs/telegram-processing.md, "Bad lists"), after the words inside the
+// RAM were read as the per-container way reads them (TelegramRam: a run is done word by
+// word up to the RAM's end).
+TEST(Busy, APlainContainerThenOneBeyondTheRamFaultsAfterTheWordsInside) {
+  const std::uint16_t h = 0x07F8;  // containers at 0x7FC (1 word) and 0x7FE (3 words)
+  const Gathered g = gather_at(h, 4, {0x0001, 0x1111, 0x8003, 0x2222});
+  EXPECT_EQ(g.fault, "list structure beyond the RAM");
+  EXPECT_TRUE(g.data.empty());
+  EXPECT_EQ(g.accesses, 4u);  // 0x7FC..0x7FF
+  EXPECT_EQ(g.busy_words, word_range(0x7FC, 0x7FF));
+}
+
+// A list walk that records what the list tells its client.
+struct RecordingClient final : ListClient {
+  void transmit_due(const ListItem&) override {}
+  void receive_missed(const ListItem&) override {}
+  void end_reached(const ListItem& item) override { ends.push_back(item); }
+  void list_fault(const ListFault& f) override { faults.emplace_back(f.what()); }
+  sim::Time start_report_delay() const override { return 0; }
+  void list_moved() override {}
+  std::vector<ListItem> ends;
+  std::vector<std::string> faults;
+};
+
+// COMPT1 names `item`, whose words are `words`; the walk starts at 100 ns. Returns the
+// accesses the walk made and the words it used in the period (from item - 1 on).
+struct Walked {
+  std::uint64_t accesses = 0;
+  std::vector<std::uint16_t> busy_words;
+};
+Walked walk_at(ChipOnBench& bench, RecordingClient& client, std::uint16_t item,
+               const std::vector<std::uint16_t>& words) {
+  Chip& chip = *bench.chip;
+  chip.ram_write(1, item);  // COMPT1
+  for (std::size_t i = 0; i < words.size(); ++i)
+    chip.ram_write(static_cast<std::uint16_t>(item + i), words[i]);
+  bench.scheduler.run_until(100'000);
+  TelegramRam ram(chip);
+  TelegramList list(*chip.unit<TimeBase>(), ram, client);
+  Walked w;
+  const std::uint64_t before = chip.tp_ram_accesses();
+  list.start(telegram::kCompt1);
+  w.accesses = chip.tp_ram_accesses() - before;
+  BusCycle c;
+  c.mcsn0 = false;
+  c.mcsn1 = false;
+  c.bhen = false;
+  for (std::uint32_t a = item - 1u; a < 2048 && a < item + words.size(); ++a) {
+    c.address = static_cast<std::uint16_t>(2 * a);  // byte address of the word
+    if (chip.bus(c).busy) w.busy_words.push_back(static_cast<std::uint16_t>(a));
+  }
+  list.stop();
+  return w;
+}
+
+// Kind 10 inside the RAM ("kind 10" is a list fault, docs/telegram-processing.md, "Bad
+// lists"): the one-run read of headers and end markers leaves it to the word-by-word read,
+// which reads word 0 only (its kind says nothing about the words after it): one access and
+// one word used besides COMPT1, and the fault's message names kind 10.
+TEST(Busy, AKindTenItemUsesOnlyItsWordZero) {
+  ChipOnBench bench(mclk(32'000'000));
+  RecordingClient client;
+  const std::uint16_t item = 0x0100;
+  const Walked w = walk_at(bench, client, item, {0x8000, 20, 3, 0x0200, 0x7777});
+  EXPECT_EQ(w.accesses, 2u);  // COMPT1 and word 0
+  EXPECT_EQ(w.busy_words, std::vector<std::uint16_t>{item});
+  ASSERT_EQ(client.faults.size(), 1u);
+  EXPECT_EQ(client.faults[0], "list item of kind 10 (neither header nor end marker)");
+  EXPECT_TRUE(client.ends.empty());
+}
+
+// An end marker (2 words, word 0 and TEND: datasheet 4.2.3) in the RAM's last two words is a
+// legal item: too close to the end for the one-run read of 4 words, it is read word by word,
+// both words used and counted, and no fault.
+TEST(Busy, AnEndMarkerInTheLastTwoWordsIsReadWithoutAFault) {
+  ChipOnBench bench(mclk(32'000'000));
+  RecordingClient client;
+  const std::uint16_t item = 0x07FE;
+  const Walked w = walk_at(bench, client, item, {0xC000, 30});
+  EXPECT_EQ(w.accesses, 3u);  // COMPT1, word 0, TEND
+  EXPECT_EQ(w.busy_words, (std::vector<std::uint16_t>{0x07FE, 0x07FF}));
+  EXPECT_TRUE(client.faults.empty());
 }
 
 TEST(Busy, RunBeyondTheRamDoesNothing) {
