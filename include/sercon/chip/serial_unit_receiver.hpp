@@ -187,8 +187,6 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     // User-provided: value-initialising the aggregate cleared all of it first.
     Entry(RxdSegment&& s, sim::Time c, std::uint64_t n)
         : segment(std::move(s)), cut(c), serial(n) {}
-    Entry(const LineBurst& b, sim::Time c, std::uint64_t n)
-        : segment{true, LineCondition::Idle, b.start, b.bit_period, b.bits}, cut(c), serial(n) {}
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
@@ -204,10 +202,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   };
 
   void announce(RxdSegment&& segment);
-  void announce(const LineBurst& burst);
-  template <class Add>  // what both share
-  inline void announce_at(sim::Time at, Add&& add);
-  // Out of line, so announce_at() carries no message building.
+  // Out of line, so announce() carries no message building.
   [[noreturn, gnu::cold, gnu::noinline]] static void refuse_past(sim::Time at, sim::Time now);
   [[noreturn, gnu::cold, gnu::noinline]] void refuse_more(sim::Time now) const;
   Entry& append(RxdSegment&& segment);
