@@ -189,89 +189,6 @@ TEST(Busy, RunOfWordsMarksEachWordLikeSingleAccesses) {
   }
 }
 
-// A telegram whose containers are all plain is gathered as one run of words (TransmitPath):
-// it uses exactly the words one read per container would, its control words and data, at
-// that instant: each collides with a µP access in the period and counts as an access, the
-// header and the words after the last container do not.
-TEST(Busy, PlainTransmitContainersAreUsedWordByWord) {
-  ChipOnBench bench(mclk(32'000'000));
-  Chip& chip = *bench.chip;
-  const std::uint16_t header = 0x0100;
-  // Transmit header (CYCL, address 1): TRT 20, TLEN 5, PT; then containers of 3 and 2 words.
-  const std::vector<std::uint16_t> words{0x5001, 20,     5,      0x0200, 0x0003, 0x1111,
-                                         0x2222, 0x3333, 0x8002, 0x4444, 0x5555, 0x7777};
-  for (std::size_t i = 0; i < words.size(); ++i)
-    chip.ram_write(static_cast<std::uint16_t>(header + i), words[i]);
-  bench.scheduler.run_until(100'000);
-  TelegramRam ram(chip);
-  DmaPort dma(chip);
-  TransmitPath path(ram, dma);
-  PassThroughServiceChannel port;
-  ListItem item;
-  item.kind = telegram::Kind::Transmit;
-  item.address = header;
-  item.word0 = words[0];
-  item.time = 20;
-  item.length = 5;
-  item.next = 0x0200;
-  const std::uint64_t before = chip.tp_ram_accesses();
-  const std::span<const std::uint8_t> data = path.gather(item, false, port);
-  const std::vector<std::uint8_t> expected{0x11, 0x11, 0x22, 0x22, 0x33,
-                                           0x33, 0x44, 0x44, 0x55, 0x55};
-  EXPECT_EQ(std::vector<std::uint8_t>(data.begin(), data.end()), expected);
-  EXPECT_EQ(chip.tp_ram_accesses() - before, 7u);  // 2 control words, 5 data words
-  BusCycle c;
-  c.mcsn0 = false;
-  c.mcsn1 = false;
-  c.bhen = false;
-  for (std::uint16_t w = header; w < header + words.size(); ++w) {
-    c.address = static_cast<std::uint16_t>(2 * w);  // byte address of the word
-    EXPECT_EQ(chip.bus(c).busy, w >= header + 4 && w <= header + 10) << w;
-  }
-}
-
-// The list walk reads a header or end marker as one run of words (TelegramList): exactly
-// its words, word 0 and TRT, TLEN, PT or TEND, collide in the period and count as accesses.
-TEST(Busy, ListItemsAreUsedWordByWord) {
-  struct Client final : ListClient {
-    void transmit_due(const ListItem&) override {}
-    void receive_missed(const ListItem&) override {}
-    void end_reached(const ListItem&) override {}
-    void list_fault(const ListFault&) override {}
-    sim::Time start_report_delay() const override { return 0; }
-    void list_moved() override {}
-  };
-  for (const bool end_marker : {false, true}) {
-    ChipOnBench bench(mclk(32'000'000));
-    Chip& chip = *bench.chip;
-    const std::uint16_t item = 0x0100;
-    chip.ram_write(1, item);  // COMPT1
-    // A transmit header due at 20 µs (armed: the walk waits there), or an end marker.
-    const std::vector<std::uint16_t> words =
-        end_marker ? std::vector<std::uint16_t>{0xC000, 30, 0x7777, 0x7777, 0x7777}
-                   : std::vector<std::uint16_t>{0x5001, 20, 3, 0x0200, 0x7777};
-    for (std::size_t i = 0; i < words.size(); ++i)
-      chip.ram_write(static_cast<std::uint16_t>(item + i), words[i]);
-    bench.scheduler.run_until(100'000);
-    TelegramRam ram(chip);
-    Client client;
-    TelegramList list(*chip.unit<TimeBase>(), ram, client);
-    const std::uint64_t before = chip.tp_ram_accesses();
-    list.start(telegram::kCompt1);
-    const std::size_t used = end_marker ? 2 : 4;
-    EXPECT_EQ(chip.tp_ram_accesses() - before, 1 + used) << end_marker;  // COMPT1 and the item
-    BusCycle c;
-    c.mcsn0 = false;
-    c.mcsn1 = false;
-    c.bhen = false;
-    for (std::uint16_t w = item - 1; w < item + words.size(); ++w) {
-      c.address = static_cast<std::uint16_t>(2 * w);  // byte address of the word
-      EXPECT_EQ(chip.bus(c).busy, w >= item && w < item + used) << w << " " << end_marker;
-    }
-    list.stop();
-  }
-}
-
 // What one gather left behind: the bytes (none after a fault), the accesses it made, the
 // words it used in the period (BUSYN against a µP access), and any list fault's message.
 struct Gathered {
@@ -345,6 +262,64 @@ std::vector<std::uint16_t> word_range(std::uint16_t first, std::uint16_t last) {
   std::vector<std::uint16_t> out;
   for (std::uint32_t w = first; w <= last; ++w) out.push_back(static_cast<std::uint16_t>(w));
   return out;
+}
+
+// A telegram whose containers are all plain is gathered as one run of words (TransmitPath):
+// it uses exactly the words one read per container would, its control words and data, at
+// that instant: each collides with a µP access in the period and counts as an access, the
+// header and the words after the last container do not.
+TEST(Busy, PlainTransmitContainersAreUsedWordByWord) {
+  // Containers of 3 and 2 words after the header (TLEN 5), then a word not used.
+  const Gathered g =
+      gather_at(0x0100, 5, {0x0003, 0x1111, 0x2222, 0x3333, 0x8002, 0x4444, 0x5555, 0x7777});
+  const std::vector<std::uint8_t> expected{0x11, 0x11, 0x22, 0x22, 0x33,
+                                           0x33, 0x44, 0x44, 0x55, 0x55};
+  EXPECT_EQ(g.data, expected);
+  EXPECT_EQ(g.fault, "");
+  EXPECT_EQ(g.accesses, 7u);  // 2 control words, 5 data words
+  EXPECT_EQ(g.busy_words, word_range(0x0104, 0x010A));
+}
+
+// The list walk reads a header or end marker as one run of words (TelegramList): exactly
+// its words, word 0 and TRT, TLEN, PT or TEND, collide in the period and count as accesses.
+TEST(Busy, ListItemsAreUsedWordByWord) {
+  struct Client final : ListClient {
+    void transmit_due(const ListItem&) override {}
+    void receive_missed(const ListItem&) override {}
+    void end_reached(const ListItem&) override {}
+    void list_fault(const ListFault&) override {}
+    sim::Time start_report_delay() const override { return 0; }
+    void list_moved() override {}
+  };
+  for (const bool end_marker : {false, true}) {
+    ChipOnBench bench(mclk(32'000'000));
+    Chip& chip = *bench.chip;
+    const std::uint16_t item = 0x0100;
+    chip.ram_write(1, item);  // COMPT1
+    // A transmit header due at 20 µs (armed: the walk waits there), or an end marker.
+    const std::vector<std::uint16_t> words =
+        end_marker ? std::vector<std::uint16_t>{0xC000, 30, 0x7777, 0x7777, 0x7777}
+                   : std::vector<std::uint16_t>{0x5001, 20, 3, 0x0200, 0x7777};
+    for (std::size_t i = 0; i < words.size(); ++i)
+      chip.ram_write(static_cast<std::uint16_t>(item + i), words[i]);
+    bench.scheduler.run_until(100'000);
+    TelegramRam ram(chip);
+    Client client;
+    TelegramList list(*chip.unit<TimeBase>(), ram, client);
+    const std::uint64_t before = chip.tp_ram_accesses();
+    list.start(telegram::kCompt1);
+    const std::size_t used = end_marker ? 2 : 4;
+    EXPECT_EQ(chip.tp_ram_accesses() - before, 1 + used) << end_marker;  // COMPT1 and the item
+    BusCycle c;
+    c.mcsn0 = false;
+    c.mcsn1 = false;
+    c.bhen = false;
+    for (std::uint16_t w = item - 1; w < item + words.size(); ++w) {
+      c.address = static_cast<std::uint16_t>(2 * w);  // byte address of the word
+      EXPECT_EQ(chip.bus(c).busy, w >= item && w < item + used) << w << " " << end_marker;
+    }
+    list.stop();
+  }
 }
 
 // The one-run gather takes only telegrams whose containers are all plain; one that starts
