@@ -222,9 +222,9 @@ std::size_t SerialReceiver::in_force(sim::Time t) const {
   return i;
 }
 
-SerialReceiver::Entry* SerialReceiver::find(std::uint64_t serial) {
-  for (Entry& e : timeline_) {
-    if (e.serial == serial) return &e;
+SerialReceiver::Entry* SerialReceiver::find_before_last(std::uint64_t serial) {
+  for (std::size_t i = 0; i + 1 < timeline_.size(); ++i) {
+    if (timeline_[i].serial == serial) return &timeline_[i];
   }
   return nullptr;
 }
@@ -424,8 +424,7 @@ template <bool kTelegram>
 void SerialReceiver::fire_report() {
   report_event_ = {};
   const Report r = report_;
-  // Mostly of the last entry (a burst read fires its reports before the next one comes).
-  Entry* e = timeline_.back().serial == r.serial ? &timeline_.back() : find(r.serial);
+  Entry* e = find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
   const wire::DecodedFrame& f = e->decode->frames[r.frame];
   FrameState& st = e->frames[r.frame];
@@ -477,8 +476,7 @@ inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
 // planned without the walk, as plan_reports() would plan it; otherwise the walk decides.
 inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
   if (!on_telegram_ || !unit_.running()) return false;
-  // Again: the handler may have added entries (the vector may have moved). Mostly the last.
-  Entry* e = timeline_.back().serial == fired.serial ? &timeline_.back() : find(fired.serial);
+  Entry* e = find(fired.serial);  // again: the handler may have added entries (and moved them)
   if (e == nullptr || !e->decode || fired.frame >= e->frames.size()) return false;
   FrameState& st = e->frames[fired.frame];
   if (st.end_done) return false;

@@ -266,7 +266,13 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void take(Entry& entry, bool appended = false);
   void prune();
   std::size_t in_force(sim::Time t) const;  // index of the entry in force at t
-  Entry* find(std::uint64_t serial);
+  // The entry numbered `serial`, null when it is gone. Mostly the last one (a burst read
+  // fires its reports before the next one comes): inline, the walk only for the others.
+  Entry* find(std::uint64_t serial) {
+    Entry& last = timeline_.back();
+    return last.serial == serial ? &last : find_before_last(serial);
+  }
+  Entry* find_before_last(std::uint64_t serial);
 
   void work_out(Entry& e, std::size_t first);  // frame times from frame `first` on
   // Report times worked out (inline: asked at every plan, and mostly known by then).
