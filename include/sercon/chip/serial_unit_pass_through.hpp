@@ -66,19 +66,11 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
 }
 
 // A read hop's burst handed on unbooked when the repeater's and TxD's conditions allow
-// (would_pass) and the lone follower takes it. After a burst forwarded unbooked nothing has
-// changed the repeater or TxD (every way into them absorbs first): only the listener's own
-// conditions are left.
+// (would_pass) and the lone follower takes it.
 inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Time at) {
+  if (!would_pass(at)) return false;
   const sim::Time now = scheduler_.now();
-  if (own_end_ > now) return false;
-  const bool after = !forwarded_.empty();
-  if (after ? forwarded_.back().leaves >= at
-            : background_.empty() || background_.back().since >= at) {
-    return false;
-  }
   TxdOutputs& txd = unit_.outputs();
-  if (!after && !txd.would_pass(at)) return false;
   // Kept as it reaches TxD's listener, and handed on from here.
   Forwarded& kept = forwarded_.emplace_back();
   kept.leaves = at;
