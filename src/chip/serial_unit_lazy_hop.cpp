@@ -205,13 +205,8 @@ bool SerialReceiver::lazy_report_due(sim::Time now) const {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.reaching;
     if (lazy.reports_over < now) continue;  // its reports are past
-    for (const wire::DecodedFrame& f : decode_burst(b.bits).frames) {
-      if (!may_want(f)) continue;
-      const sim::Time start = lazy.arrived + static_cast<sim::Time>(f.start_bit) * b.bit_period;
-      if (wants_start(start, f.address) || wants_telegram(start, f)) {
-        return true;
-      }
-    }
+    // Asked as at the hop, of the burst as it reached RxD.
+    if (wants_a_report(LineBurst{lazy.arrived, b.bit_period, b.bits})) return true;
   }
   return false;
 }
