@@ -283,6 +283,58 @@ TEST(LazyHops, AHandlerInstalledWhileATelegramPassesHearsTheSame) {
   EXPECT_EQ(told_after_late_handler(true), told_after_late_handler(false));
 }
 
+// line.hpp, LineListener::pass_through: a listener passes a burst on unchanged, only later.
+// A node keeps its lazy burst's own bits and books them itself later, so a listener that
+// hands back other bits or another bit period is refused with a logic_error naming it,
+// rather than the node booking what the far end never got; one that keeps them is taken.
+class PassingLink final : public chip::LineListener {
+ public:
+  PassingLink(chip::LineListener& far, bool change) : far_(far), change_(change) {}
+  void line_condition(Time at, LineCondition c, Time period) override {
+    far_.line_condition(at, c, period);
+  }
+  void line_burst(const LineBurst& burst) override { far_.line_burst(burst); }
+  bool pass_through(const LineBurst& burst, chip::LineListener*& next, const LineBurst*& out,
+                    chip::PassedBursts&) override {
+    passed_ = LineBurst{burst.start + 1000, change_ ? 2 * burst.bit_period : burst.bit_period,
+                        burst.bits};
+    next = &far_;
+    out = &passed_;
+    ++taken;
+    return true;
+  }
+  void book_passed(const LineBurst&) override {}
+  int taken = 0;
+
+ private:
+  chip::LineListener& far_;
+  bool change_;
+  LineBurst passed_;
+};
+
+TEST(LazyHops, AListenerThatChangesTheBurstItPassesIsRefused) {
+  for (const bool change : {false, true}) {
+    SCOPED_TRACE(change);
+    RepeatingChip node(true);
+    testing::Recorder sink(node.s);
+    PassingLink link(sink, change);
+    node.u.connect_txd(1, link);
+    if (!change) {
+      node.idle_then_telegrams(3, 150, 100);
+      EXPECT_GT(node.u.receiver().lazy_hops_taken(), 0u);
+      EXPECT_GT(link.taken, 0);
+      continue;
+    }
+    try {
+      node.idle_then_telegrams(3, 150, 100);
+      ADD_FAILURE() << "a changed burst was taken";
+    } catch (const std::logic_error& e) {
+      EXPECT_NE(std::string(e.what()).find("pass_through changed the burst"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // docs/serial-and-ring.md, "Absorbing": a plan of reports (here the telegram processor's
 // interest changed) that wants none of the waiting bursts' reports leaves them lazy; a read
 // of the line still absorbs them.
