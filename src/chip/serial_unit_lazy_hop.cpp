@@ -175,7 +175,8 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
 }
 
 void SerialReceiver::absorb_waiting() {
-  prune_lazy(scheduler_.now());  // a burst over by now would only be pruned
+  const sim::Time now = scheduler_.now();
+  prune_lazy(now);  // a burst over by now would only be pruned
   // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.
@@ -188,7 +189,19 @@ void SerialReceiver::absorb_waiting() {
     const LineBurst& b = lazy.reaching;
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
     prune();
-    take(append(RxdSegment{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits}));
+    RxdSegment s{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits};
+    // Mostly (an own telegram absorbs the burst that came before it) the burst is in force
+    // by now and the one entry before it over: the next prune() would move the burst to the
+    // front, so it takes the front's place at once (its entry as append() would make it).
+    if (timeline_.size() == 1 && lazy.arrived <= now && done_with(timeline_.front(), now)) {
+      Entry& e = timeline_.front();
+      e.cut = s.burst_end();
+      e.serial = next_serial_++;
+      e.segment = std::move(s);
+      take(e, true);
+    } else {
+      take(append(std::move(s)));
+    }
     unit_.repeater().absorb(LineBurst{lazy.leaves, b.bit_period, b.bits});
   }
 }

@@ -265,7 +265,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // Decode if this chip receives it. `appended`: just appended, so not cut (cut is its end).
   void take(Entry& entry, bool appended = false);
   void prune();
-  std::size_t in_force(sim::Time t) const;  // index of the entry in force at t
+  inline bool done_with(Entry& e, sim::Time now) const;  // prune()'s test of the front entry
+  std::size_t in_force(sim::Time t) const;               // index of the entry in force at t
   // The entry numbered `serial`, null when it is gone. Mostly the last one (a burst read
   // fires its reports before the next one comes): inline, the walk only for the others.
   Entry* find(std::uint64_t serial) {

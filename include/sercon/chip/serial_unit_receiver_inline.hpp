@@ -85,22 +85,28 @@ inline void SerialReceiver::work_out(Entry& e, std::size_t first) {
   }
 }
 
+// No report of e's is to come, nor is one planned or being fired: once a later entry is in
+// force, e can go.
+inline bool SerialReceiver::done_with(Entry& e, sim::Time now) const {
+  if ((e.serial == report_.serial && report_event_.value != 0) || e.serial == firing_) return false;
+  // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
+  // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
+  if (!e.frames.empty()) {
+    const FrameState& last = e.frames.back();
+    if (last.end >= now) return false;
+    if (!surely_over(e, last, now) && with_reports(e, e.frames.size() - 1).telegram_report >= now) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Entries over and done with: a later one is in force and no report of theirs is to come.
 inline void SerialReceiver::prune() {
   const sim::Time now = scheduler_.now();
   while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
     Entry& e = timeline_.front();
-    if ((e.serial == report_.serial && report_event_.value != 0) || e.serial == firing_) return;
-    // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
-    // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
-    if (!e.frames.empty()) {
-      const FrameState& last = e.frames.back();
-      if (last.end >= now) return;
-      if (!surely_over(e, last, now) &&
-          with_reports(e, e.frames.size() - 1).telegram_report >= now) {
-        return;
-      }
-    }
+    if (!done_with(e, now)) return;
     if (timeline_.size() == 2) {  // mostly: the one after it moves to the front
       e = std::move(timeline_.back());
       timeline_.pop_back();
