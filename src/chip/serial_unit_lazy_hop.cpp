@@ -193,7 +193,7 @@ void SerialReceiver::absorb_waiting() {
     // Mostly (an own telegram absorbs the burst that came before it) the burst is in force
     // by now and the one entry before it over: the next prune() would move the burst to the
     // front, so it takes the front's place at once (its entry as append() would make it).
-    if (timeline_.size() == 1 && lazy.arrived <= now && done_with(timeline_.front(), now)) {
+    if (!holds_more_than(1) && lazy.arrived <= now && done_with(timeline_.front(), now)) {
       Entry& e = timeline_.front();
       e.cut = s.burst_end();
       e.serial = next_serial_++;

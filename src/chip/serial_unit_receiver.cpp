@@ -122,7 +122,7 @@ void SerialReceiver::announce(RxdSegment&& segment) {
   }
   // Between good signals (the usual case) the monitor has nothing to hear. A burst taken is
   // one at the receiver's rate.
-  const bool quiet = timeline_.size() > 1 && good(timeline_[timeline_.size() - 2].segment) &&
+  const bool quiet = holds_more_than(1) && good((timeline_.end() - 2)->segment) &&
                      (e.decode != nullptr || good(e.segment));
   if (changed || !quiet || at == now) plan_monitor();
   recactn_.replan();
@@ -213,7 +213,7 @@ inline void SerialReceiver::reports_of(Entry& e, std::size_t i) const {
   st.start_report = address_end > e.decode->frames[i].end_bit || address_in > e.cut
                         ? kNever  // no whole address
                         : pipeline(address_in, period);
-  st.reports_known = true;
+  st.reports_known = st.telegram_known = true;
 }
 
 std::size_t SerialReceiver::in_force(sim::Time t) const {
@@ -408,7 +408,8 @@ void SerialReceiver::consider_more(Entry& e) {
     st.start_done = true;  // no whole address: never comes
   }
   if (!wants_telegram(st.start, f)) return;
-  if (!st.reports_known) reports_of(e, 0);
+  // Mostly an MST: its start report (not wanted now) is worked out only if asked for later.
+  if (!st.telegram_known) telegram_report_of(e, 0);
   arm(Report{st.telegram_report, e.serial, 0, true});
 }
 
@@ -461,13 +462,24 @@ inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
   if (last.serial != fired.serial || !last.decode || last.frames.size() != 1) return false;
   const sim::Time now = scheduler_.now();
   const FrameState& st = last.frames[0];
-  if (!st.end_done || (!st.start_done && !(st.reports_known && st.start_report < now))) {
-    return false;
-  }
+  if (!st.end_done || (!st.start_done && !start_report_past(last, st, now))) return false;
   for (const Entry* e = timeline_.data(); e != &last; ++e) {
     if (e->decode && !all_past(*e, now)) return false;
   }
   return true;
+}
+
+// At the detection of e's only frame (now): its start report is past, or never comes (a
+// plan finds nothing in it either way). Not worked out (a frame read for its detection
+// only), the address is in at most 17 bits after the frame's start (opening flag, address,
+// one stuffed 0), and its report comes before the detection when that is at least one MCLK
+// period (the longest gap between edges) before the end: a later edge of the same
+// pipeline. Otherwise false, and the caller's plan decides.
+inline bool SerialReceiver::start_report_past(const Entry& e, const FrameState& st,
+                                              sim::Time now) const {
+  if (st.reports_known) return st.start_report < now;
+  return st.start + 17 * e.segment.period + mclk_.period() <= st.end && st.telegram_known &&
+         st.telegram_report <= now;
 }
 
 // After a frame's start report, the earliest report a plan can find is that frame's
@@ -482,7 +494,7 @@ inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
   FrameState& st = e->frames[fired.frame];
   if (st.end_done) return false;
   if (!wants_telegram(st.start, e->decode->frames[fired.frame])) return false;
-  const sim::Time t = with_reports(*e, fired.frame).telegram_report;
+  const sim::Time t = telegram_report(*e, fired.frame);
   if (t < scheduler_.now() || t == kNever || report_event_.value != 0) return false;
   arm(Report{t, fired.serial, fired.frame, true});
   return true;

@@ -44,9 +44,10 @@ class MclkGrid {
   sim::Time nth_edge_after(sim::Time t, Edge n) const {
     // 0 < t <= exact_limit_: the edge is within exact_edges_, at edge * b.
     if (static_cast<std::uint64_t>(t) - 1 < exact_limit_ && n >= 0 && n <= kFewEdges) {
-      const auto u = static_cast<std::uint64_t>(t);
-      const QuotRem d = by_den(u);
-      return static_cast<sim::Time>((d.quot + (d.rem != 0) + static_cast<std::uint64_t>(n)) * den_);
+      // The first edge at or after t, ceil(t / b), as floor((t + b - 1) / b): no remainder
+      // to work out (t + b - 1 stays below 2^64: exact_limit_ is below 2^63).
+      const std::uint64_t first = by_den_.divide(static_cast<std::uint64_t>(t) + den_ - 1);
+      return static_cast<sim::Time>((first + static_cast<std::uint64_t>(n)) * den_);
     }
     return time_of(first_at_or_after(t) + n);
   }

@@ -88,6 +88,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     sim::Time telegram_report;  // detection
     bool reports_known;         // start_report and telegram_report are worked out
     bool start_done, end_done;
+    bool telegram_known;  // telegram_report is worked out (reports_known, or a frame read
+                          // for its detection only: consider_one())
   };
   // Frame states without an allocation for the usual burst of one frame: in inline_ when
   // there is one, else all in more_ (contiguous either way, for the plans' walk). Small, as
@@ -274,6 +276,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     return last.serial == serial ? &last : find_before_last(serial);
   }
   Entry* find_before_last(std::uint64_t serial);
+  // The timeline holds more than `n` entries (n <= its size), asked by pointers: size()
+  // divides by the entry's size, which is no power of two (asked several times a read).
+  bool holds_more_than(std::ptrdiff_t n) const { return timeline_.begin() + n < timeline_.end(); }
 
   void work_out(Entry& e, std::size_t first);  // frame times from frame `first` on
   // Report times worked out (inline: asked at every plan, and mostly known by then).
@@ -282,8 +287,19 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     if (!st.reports_known) work_out_reports(e, frame);
     return st;
   }
+  // The detection's time, the start report's left as it is.
+  sim::Time telegram_report(Entry& e, std::size_t frame) const {
+    FrameState& st = e.frames[frame];
+    if (!st.telegram_known) telegram_report_of(e, frame);
+    return st.telegram_report;
+  }
   void work_out_reports(Entry& e, std::size_t frame) const;
   inline void reports_of(Entry& e, std::size_t frame) const;  // what work_out_reports() does
+  void telegram_report_of(Entry& e, std::size_t frame) const {
+    FrameState& st = e.frames[frame];
+    st.telegram_report = pipeline(st.end, e.segment.period);
+    st.telegram_known = true;
+  }
   // Both of the frame's reports are past at `now`, known without working them out.
   bool surely_over(const Entry& e, const FrameState& st, sim::Time now) const {
     return !st.reports_known && st.end + report_lag(e.segment.period) < now;
@@ -305,7 +321,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   bool all_past(const Entry& e, sim::Time now) const {
     if (e.frames.empty()) return true;
     const FrameState& last = e.frames.back();
-    return (last.reports_known ? last.telegram_report : last.end + report_lag(e.segment.period)) <
+    return (last.telegram_known ? last.telegram_report : last.end + report_lag(e.segment.period)) <
            now;
   }
   bool lazy_report_due(sim::Time now) const;  // lazy_ not empty: a plan must absorb it first
@@ -324,6 +340,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void fire_report();
   inline bool plan_telegram_after_start(const Report& fired);      // true: planned
   inline bool nothing_after_detection(const Report& fired) const;  // a plan would find none
+  inline bool start_report_past(const Entry& e, const FrameState& st, sim::Time now) const;
   void plan_monitor();
   void fire_monitor();
   bool good(const RxdSegment& s) const;  // edges at the receiver's rate

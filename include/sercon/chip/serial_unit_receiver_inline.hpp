@@ -66,7 +66,7 @@ inline void SerialReceiver::take(Entry& e, bool appended) {
     e.frames.set_one(
         FrameState{s.since + static_cast<sim::Time>(f.start_bit) * s.period,
                    std::min(s.since + static_cast<sim::Time>(f.end_bit) * s.period, e.cut), 0, 0,
-                   false, false, false});
+                   false, false, false, false});
     return;
   }
   e.frames.reset(d.frames.size());
@@ -81,7 +81,7 @@ inline void SerialReceiver::work_out(Entry& e, std::size_t first) {
     FrameState& st = e.frames[i];
     st.start = since + static_cast<sim::Time>(f.start_bit) * period;
     st.end = std::min(since + static_cast<sim::Time>(f.end_bit) * period, e.cut);
-    st.reports_known = false;
+    st.reports_known = st.telegram_known = false;
   }
 }
 
@@ -94,7 +94,7 @@ inline bool SerialReceiver::done_with(Entry& e, sim::Time now) const {
   if (!e.frames.empty()) {
     const FrameState& last = e.frames.back();
     if (last.end >= now) return false;
-    if (!surely_over(e, last, now) && with_reports(e, e.frames.size() - 1).telegram_report >= now) {
+    if (!surely_over(e, last, now) && telegram_report(e, e.frames.size() - 1) >= now) {
       return false;
     }
   }
@@ -104,10 +104,10 @@ inline bool SerialReceiver::done_with(Entry& e, sim::Time now) const {
 // Entries over and done with: a later one is in force and no report of theirs is to come.
 inline void SerialReceiver::prune() {
   const sim::Time now = scheduler_.now();
-  while (timeline_.size() > 1 && timeline_[1].segment.since <= now) {
+  while (holds_more_than(1) && timeline_[1].segment.since <= now) {
     Entry& e = timeline_.front();
     if (!done_with(e, now)) return;
-    if (timeline_.size() == 2) {  // mostly: the one after it moves to the front
+    if (!holds_more_than(2)) {  // mostly two: the one after it moves to the front
       e = std::move(timeline_.back());
       timeline_.pop_back();
       return;
