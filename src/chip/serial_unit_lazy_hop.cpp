@@ -182,24 +182,26 @@ void SerialReceiver::absorb_waiting() {
   // node does not throw again at every later absorb.
   struct LetGo {
     sim::CircularQueue<LazyBurst>& lazy;
-    ~LetGo() { lazy.clear(); }
+    ~LetGo() { lazy.drop_all(); }  // as drop_front() lets them go
   } let_go{lazy_};
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.reaching;
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
-    prune();
     RxdSegment s{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits};
     // Mostly (an own telegram absorbs the burst that came before it) the burst is in force
-    // by now and the one entry before it over: the next prune() would move the burst to the
-    // front, so it takes the front's place at once (its entry as append() would make it).
-    if (!holds_more_than(1) && lazy.arrived <= now && done_with(timeline_.front(), now)) {
+    // by now and every entry before it over: prune() would then leave the burst alone, so
+    // it takes the front's place at once (its entry as append() would make it), the others
+    // dropped from the back, none moved.
+    if (lazy.arrived <= now && all_done_with(now)) {
+      while (holds_more_than(1)) timeline_.pop_back();
       Entry& e = timeline_.front();
       e.cut = s.burst_end();
       e.serial = next_serial_++;
       e.segment = std::move(s);
       take(e, true);
     } else {
+      prune();
       take(append(std::move(s)));
     }
     unit_.repeater().absorb(LineBurst{lazy.leaves, b.bit_period, b.bits});

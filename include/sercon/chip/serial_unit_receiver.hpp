@@ -268,6 +268,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void take(Entry& entry, bool appended = false);
   void prune();
   inline bool done_with(Entry& e, sim::Time now) const;  // prune()'s test of the front entry
+  inline bool all_done_with(sim::Time now);              // done_with() every entry
   std::size_t in_force(sim::Time t) const;               // index of the entry in force at t
   // The entry numbered `serial`, null when it is gone. Mostly the last one (a burst read
   // fires its reports before the next one comes): inline, the walk only for the others.

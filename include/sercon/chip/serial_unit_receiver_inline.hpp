@@ -101,6 +101,13 @@ inline bool SerialReceiver::done_with(Entry& e, sim::Time now) const {
   return true;
 }
 
+inline bool SerialReceiver::all_done_with(sim::Time now) {
+  for (Entry& e : timeline_) {
+    if (!done_with(e, now)) return false;
+  }
+  return true;
+}
+
 // Entries over and done with: a later one is in force and no report of theirs is to come.
 inline void SerialReceiver::prune() {
   const sim::Time now = scheduler_.now();

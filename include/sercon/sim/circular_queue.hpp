@@ -85,6 +85,9 @@ class CircularQueue {
   void clear() {
     while (size_ > 0) pop_back();
   }
+  // clear() for a queue pushed by reuse_back(): every element goes as drop_front() lets one
+  // go, its slot kept as it is until the push that reuses it (the front stays where it is).
+  void drop_all() { size_ = 0; }
 
  private:
   // The slot after the back, counted in (the buffer has room: emplace_back grows it).
