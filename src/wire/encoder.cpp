@@ -5,6 +5,7 @@
 
 #include <array>
 #include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -97,6 +98,98 @@ template <class Full>
   }
 }
 
+// The `n` (0..8) bytes at `p` as one word, the first byte lowest: their line order (LSB
+// first) from bit 0 up. Never reads past them.
+std::uint64_t load_le(const std::uint8_t* p, std::size_t n) {
+  const auto get32 = [](const std::uint8_t* q) {
+    std::uint32_t v;
+    std::memcpy(&v, q, 4);
+    if constexpr (std::endian::native == std::endian::big) v = __builtin_bswap32(v);
+    return std::uint64_t{v};
+  };
+  if (n >= 4) return get32(p) | get32(p + n - 4) << (8 * (n - 4));  // overlapping halves
+  if (n == 0) return 0;
+  return std::uint64_t{p[0]} | std::uint64_t{p[n / 2]} << (8 * (n / 2)) |
+         std::uint64_t{p[n - 1]} << (8 * (n - 1));
+}
+
+std::uint64_t load_le8(const std::uint8_t* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, 8);
+  if constexpr (std::endian::native == std::endian::big) v = __builtin_bswap64(v);
+  return v;
+}
+
+// Bit i to bit 63 - i: line order from the first bit highest.
+std::uint64_t reverse_bits(std::uint64_t x) {
+  x = __builtin_bswap64(x);
+  x = (x >> 4 & 0x0F0F0F0F0F0F0F0Full) | (x & 0x0F0F0F0F0F0F0F0Full) << 4;
+  x = (x >> 2 & 0x3333333333333333ull) | (x & 0x3333333333333333ull) << 2;
+  return (x >> 1 & 0x5555555555555555ull) | (x & 0x5555555555555555ull) << 1;
+}
+
+// Appends the top `n` (1..64) bits of `top` (the rest 0), first bit highest.
+template <class Full>
+[[gnu::always_inline]] inline void put_top(Decoded& d, std::uint64_t top, unsigned n,
+                                           const Full& full) {
+  d.bits |= top >> d.count;
+  const unsigned total = d.count + n;
+  if (total < 64) {
+    d.count = total;
+    return;
+  }
+  full(d.bits);
+  d.bits = d.count == 0 ? 0 : top << (64 - d.count);
+  d.count = total - 64;
+}
+
+// `bytes` (1..8 bytes, the first lowest) stuffed at once when no five 1s come together in
+// them, with the run carried in (most data has no such run); else byte by byte.
+template <class Full>
+[[gnu::always_inline]] inline void stuff_word(Decoded& d, std::uint64_t bytes, unsigned n,
+                                              const Full& full) {
+  const unsigned bits = 8 * n;
+  const std::uint64_t top = reverse_bits(bytes);  // the rest 0: no run reaches past them
+  const std::uint64_t runs = top & top << 1 & top << 2 & top << 3 & top << 4;
+  if (runs == 0 && d.run + static_cast<unsigned>(std::countl_one(top)) < 5) [[likely]] {
+    put_top(d, top, bits, full);
+    d.run = static_cast<unsigned>(std::countr_one(top >> (64 - bits)));
+    return;
+  }
+  for (unsigned i = 0; i < n; ++i, bytes >>= 8) {
+    const std::uint32_t e = kStuff[d.run * 256 + (bytes & 0xFFu)];
+    put(d, e & 0x3FFu, (e >> 10) & 0xFu, full);
+    d.run = e >> 14;
+  }
+}
+
+// Address, data and FCS (low byte first) stuffed, up to 8 bytes at a time.
+template <class Full>
+[[gnu::always_inline]] inline void stuff_telegram(Decoded& d, std::uint8_t address,
+                                                  std::span<const std::uint8_t> data,
+                                                  std::uint16_t fcs, const Full& full) {
+  const std::uint8_t* p = data.data();
+  std::size_t n = data.size();
+  const std::size_t first = n < 7 ? n : 7;  // with the address
+  if (first + 3 <= 8) {                     // all of it in one word
+    stuff_word(d, address | load_le(p, n) << 8 | std::uint64_t{fcs} << (8 * (n + 1)),
+               static_cast<unsigned>(n + 3), full);
+    return;
+  }
+  stuff_word(d, address | load_le(p, first) << 8, static_cast<unsigned>(first + 1), full);
+  p += first;
+  n -= first;
+  for (; n > 8; n -= 8, p += 8) stuff_word(d, load_le8(p), 8, full);
+  // The last 1..8 data bytes, with the FCS when it fits.
+  if (n <= 6) {
+    stuff_word(d, load_le(p, n) | std::uint64_t{fcs} << (8 * n), static_cast<unsigned>(n + 2),
+               full);
+    return;
+  }
+  stuff_word(d, load_le(p, n), static_cast<unsigned>(n), full);
+  stuff_word(d, fcs, 2, full);
+}
+
 }  // namespace
 
 LineEncoder::LineEncoder(bool initial_level_high) : level_(initial_level_high) {}
@@ -171,13 +264,9 @@ template <class Full>
   fcs.update(address);
   fcs.update(data);
   const std::uint16_t v = fcs.value();
-  const std::uint8_t head[1] = {address};
-  const std::uint8_t tail[2] = {static_cast<std::uint8_t>(v & 0xFFu),
-                                static_cast<std::uint8_t>(v >> 8)};  // low byte first
   put(d, 0x7E, 8, full);  // flag; the stuffing count starts after it
-  stuff_into(d, head, full);
-  stuff_into(d, data, full);
-  stuff_into(d, tail, full);
+  d.run = 0;
+  stuff_telegram(d, address, data, v, full);
   put(d, 0x7E, 8, full);
   return v;
 }
