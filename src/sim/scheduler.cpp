@@ -244,11 +244,36 @@ void Scheduler::run_callback(std::uint32_t index) {
 // Each event is one batch of signal changes (signal.hpp): what its pins do is heard once
 // the event is done, so a watcher never sees a model half-way through an event. One
 // Signal::Steps for the run: the batch is not opened and closed again at every event.
+// front() and run() in one: the entry and its slot are looked up once per event.
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
   Signal::Steps steps;
-  for (const Entry* next = front(); next != nullptr && next->when <= until; next = front()) {
-    run(*next);
+  for (;;) {
+    const std::size_t head = near_.head;
+    if (head == near_.tail) {
+      if (far_.empty()) break;
+      refill();
+      continue;
+    }
+    const Entry& entry = near_.buffer[head];
+    const std::uint32_t index = entry.slot;
+    Slot& slot = slots_[index];
+    if (slot.generation != entry.generation) {  // cancelled
+      near_.head = head + 1;
+      continue;
+    }
+    if (entry.when > until) break;
+    near_.head = head + 1;
+    now_ = entry.when;
+    // Take the event out before running it: it may schedule others (slots_ may grow).
+    if (slot.action != nullptr) {
+      const Action action = slot.action;
+      void* const context = slot.context;
+      free_slot(index);
+      action(context);
+    } else {
+      run_callback(index);
+    }
     steps.done();
   }
   now_ = until;
