@@ -163,31 +163,38 @@ template <class Full>
   }
 }
 
-// Address, data and FCS (low byte first) stuffed, up to 8 bytes at a time.
-template <class Full>
-[[gnu::always_inline]] inline void stuff_telegram(Decoded& d, std::uint8_t address,
-                                                  std::span<const std::uint8_t> data,
-                                                  std::uint16_t fcs, const Full& full) {
+// Address, data and FCS (low byte first) as words of up to 8 bytes, the first byte lowest:
+// `word(bytes, n)` for each, in line order. The FCS is worked out on the way: returned.
+template <class Word>
+[[gnu::always_inline]] inline std::uint16_t telegram_words(std::uint8_t address,
+                                                           std::span<const std::uint8_t> data,
+                                                           const Word& word) {
   const std::uint8_t* p = data.data();
   std::size_t n = data.size();
-  const std::size_t first = n < 7 ? n : 7;  // with the address
-  if (first + 3 <= 8) {                     // all of it in one word
-    stuff_word(d, address | load_le(p, n) << 8 | std::uint64_t{fcs} << (8 * (n + 1)),
-               static_cast<unsigned>(n + 3), full);
-    return;
+  Fcs16 fcs;
+  std::size_t k = n < 7 ? n : 7;  // with the address
+  std::uint64_t w = address | load_le(p, k) << 8;
+  ++k;
+  p += k - 1;
+  n -= k - 1;
+  while (n > 0) {  // w is 8 bytes, and more follow
+    fcs.update_word(w, 8);
+    word(w, 8u);
+    k = n < 8 ? n : 8;
+    w = k == 8 ? load_le8(p) : load_le(p, k);
+    p += k;
+    n -= k;
   }
-  stuff_word(d, address | load_le(p, first) << 8, static_cast<unsigned>(first + 1), full);
-  p += first;
-  n -= first;
-  for (; n > 8; n -= 8, p += 8) stuff_word(d, load_le8(p), 8, full);
-  // The last 1..8 data bytes, with the FCS when it fits.
-  if (n <= 6) {
-    stuff_word(d, load_le(p, n) | std::uint64_t{fcs} << (8 * n), static_cast<unsigned>(n + 2),
-               full);
-    return;
+  // w: the last k (1..8) bytes, then the FCS, in one word when it fits.
+  fcs.update_word(w, static_cast<unsigned>(k));
+  const std::uint16_t v = fcs.value();
+  if (k <= 6) {
+    word(w | std::uint64_t{v} << (8 * k), static_cast<unsigned>(k + 2));
+  } else {
+    word(w, static_cast<unsigned>(k));
+    word(std::uint64_t{v}, 2u);
   }
-  stuff_word(d, load_le(p, n), static_cast<unsigned>(n), full);
-  stuff_word(d, fcs, 2, full);
+  return v;
 }
 
 }  // namespace
@@ -260,13 +267,11 @@ template <class Full>
 [[gnu::always_inline]] inline std::uint16_t code_telegram(Decoded& d, std::uint8_t address,
                                                           std::span<const std::uint8_t> data,
                                                           const Full& full) {
-  Fcs16 fcs;
-  fcs.update(address);
-  fcs.update(data);
-  const std::uint16_t v = fcs.value();
   put(d, 0x7E, 8, full);  // flag; the stuffing count starts after it
   d.run = 0;
-  stuff_telegram(d, address, data, v, full);
+  const std::uint16_t v = telegram_words(
+      address, data,
+      [&d, &full](std::uint64_t bytes, unsigned n) { stuff_word(d, bytes, n, full); });
   put(d, 0x7E, 8, full);
   return v;
 }

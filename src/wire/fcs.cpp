@@ -28,6 +28,8 @@ constexpr const std::array<std::uint16_t, 256>& kTable = kTables[0];
 
 }  // namespace
 
+const std::array<std::array<std::uint16_t, 256>, 8> kFcsTables = kTables;
+
 void Fcs16::update(std::uint8_t byte) {
   crc_ = static_cast<std::uint16_t>((crc_ >> 8) ^ kTable[(crc_ ^ byte) & 0xFFu]);
 }
