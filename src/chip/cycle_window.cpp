@@ -15,7 +15,10 @@ std::int64_t signed16(std::uint16_t value) { return static_cast<std::int16_t>(va
 
 CycleWindow::CycleWindow(TimeBase& time_base, Interrupts& interrupts,
                          std::function<void()> closed_empty)
-    : time_base_(time_base), interrupts_(interrupts), closed_empty_(std::move(closed_empty)) {}
+    : time_base_(time_base),
+      interrupts_(interrupts),
+      closed_empty_(std::move(closed_empty)),
+      close_event_(time_base) {}
 
 // TSCYC = 0 means the cycle time is not programmed: nothing is expected, so no window
 // closes empty and nothing free-wheels.
@@ -28,19 +31,19 @@ void CycleWindow::expect_next(const CycleStart& start) {
   closes_ = tscyc_ + signed16(regs.value(kJtscyc2));
   state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
   // A window programmed to close before the counter's start closes at the first step.
-  close_event_ =
-      time_base_.at_cycle_time(std::max(closes_, start.count), &CycleWindow::closes, this);
+  time_base_.at_cycle_time(close_event_, std::max(closes_, start.count), &CycleWindow::closes,
+                           this);
 }
 
 void CycleWindow::closes(void* window) {
   auto& w = *static_cast<CycleWindow*>(window);
-  w.close_event_ = 0;
+  w.close_event_.forget();
   w.close();
 }
 
 void CycleWindow::forget() {
-  time_base_.cancel(close_event_);
-  close_event_ = 0;
+  time_base_.cancel(close_event_.id());
+  close_event_.forget();
   state_ = State::Unsynced;
 }
 
@@ -53,10 +56,11 @@ void CycleWindow::close() {
 }
 
 void CycleWindow::judge(bool master) {
-  const auto due = time_base_.when(close_event_);
-  if (due && *due <= time_base_.scheduler().now()) {
-    time_base_.cancel(close_event_);
-    close_event_ = 0;
+  // Mostly the close is still ahead: its time is looked at before the scheduler is asked.
+  if (close_event_.when() <= time_base_.scheduler().now() &&
+      time_base_.when(close_event_.id()).has_value()) {
+    time_base_.cancel(close_event_.id());
+    close_event_.forget();
     close();
   }
   const std::int64_t position = time_base_.count();

@@ -7,7 +7,11 @@ namespace sercon::chip {
 using telegram::Kind;
 
 TelegramList::TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& client)
-    : time_base_(time_base), scheduler_(time_base.scheduler()), ram_(ram), client_(client) {}
+    : time_base_(time_base),
+      scheduler_(time_base.scheduler()),
+      ram_(ram),
+      client_(client),
+      event_(time_base) {}
 
 // The time base may already be gone when units are destroyed (its destructor cancels its
 // own events); the scheduler outlives every chip.
@@ -110,16 +114,22 @@ void TelegramList::walk_from(const ListItem& first) {
 bool TelegramList::arm(const ListItem& item) {
   switch (item.kind) {
     case Kind::Transmit:
-      event_ = time_base_.at_cycle_time(item.time, &TelegramList::transmit_time, this);
-      set_state(event_ != 0 ? State::Transmit : State::Idle);
-      return event_ != 0;  // late: not sent in this cycle
+      if (time_base_.at_cycle_time(event_, item.time, &TelegramList::transmit_time, this) == 0) {
+        set_state(State::Idle);
+        return false;  // late: not sent in this cycle
+      }
+      set_state(State::Transmit);
+      return true;
     case Kind::Receive:
       return arm_receive(item);
     case Kind::EndMarker:
-      event_ = time_base_.at_cycle_time(item.time, &TelegramList::end_time, this);
-      set_state(event_ != 0 ? State::End : State::Idle);
-      if (event_ == 0) client_.end_reached(item);
-      return event_ != 0;
+      if (time_base_.at_cycle_time(event_, item.time, &TelegramList::end_time, this) == 0) {
+        set_state(State::Idle);
+        client_.end_reached(item);
+        return false;
+      }
+      set_state(State::End);
+      return true;
     case Kind::Invalid:
       break;
   }
@@ -157,7 +167,7 @@ void TelegramList::transmit_time(void* list) { static_cast<TelegramList*>(list)-
 void TelegramList::end_time(void* list) { static_cast<TelegramList*>(list)->fire_end(); }
 
 [[gnu::flatten]] void TelegramList::fire_transmit() {
-  event_ = 0;
+  event_.forget();
   set_state(State::Idle);
   const ListItem item = item_;
   try {
@@ -185,7 +195,7 @@ void TelegramList::close_window() {
 
 // No list_moved(): offer() answers NotExpected before (end marker armed) and after.
 void TelegramList::fire_end() {
-  event_ = 0;
+  event_.forget();
   set_state(State::Idle);
   client_.end_reached(item_);
 }

@@ -35,11 +35,25 @@ TimeBase::TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
 }
 
-TimeBase::~TimeBase() { cancel_all(); }
+TimeBase::~TimeBase() {
+  cancel_all();
+  for (OwnedEvent* owned : owned_) owned->time_base_ = nullptr;
+}
+
+TimeBase::OwnedEvent::OwnedEvent(TimeBase& time_base)
+    : time_base_(&time_base), scheduler_(time_base.scheduler_) {
+  time_base.owned_.push_back(this);
+}
+
+TimeBase::OwnedEvent::~OwnedEvent() {
+  scheduler_.cancel(sim::Scheduler::EventId{id_});
+  if (time_base_ != nullptr) std::erase(time_base_->owned_, this);
+}
 
 void TimeBase::cancel_all() {
   for (const Planned& planned : planned_) scheduler_.cancel(planned.event);
   planned_.clear();
+  for (OwnedEvent* owned : owned_) scheduler_.cancel(sim::Scheduler::EventId{owned->id_});
 }
 
 void TimeBase::reset(ResetCause) {
@@ -80,6 +94,10 @@ std::uint16_t TimeBase::tscyc() const {
     }
   }
   planned_.erase(planned_.begin() + (kept - planned_.data()), planned_.end());
+  // An owned event due now stays as well (a cancelled or run one's id no longer matches).
+  for (const OwnedEvent* owned : owned_) {
+    if (owned->when_ > now) scheduler_.cancel(sim::Scheduler::EventId{owned->id_});
+  }
 }
 
 // Always inline in the two cycle starts (GCC made it a call once FieldRef reads got cheaper).
@@ -127,7 +145,7 @@ TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
   if (!step) return 0;
   if (planned_.size() == planned_.capacity()) prune();
   const sim::Scheduler::EventId event = scheduler_.at(*step, std::move(callback));
-  planned_.push_back(Planned{event, cycle_time, *step});
+  planned_.push_back(Planned{event, cycle_time, *step, ++asked_});
   return event.value;
 }
 
@@ -163,11 +181,28 @@ void TimeBase::on_register_change(std::uint8_t address) {
   // Moved in the order they were asked for, each after the events already due at its
   // new time, so events that now share a time run in that order.
   const sim::Time changed_at = mclk_.time_of(edge);
+  struct Moved {
+    std::uint64_t asked;
+    sim::Scheduler::EventId event;
+    std::int64_t cycle_time;
+    sim::Time* when;
+  };
+  std::vector<Moved> moved;
   for (Planned& planned : planned_) {
     // Ran or cancelled, or due at the tick before the change: stays.
     if (planned.when <= changed_at || !scheduler_.pending(planned.event)) continue;
-    planned.when = time_of_step(planned.cycle_time);
-    scheduler_.move(planned.event, planned.when);
+    moved.push_back(Moved{planned.asked, planned.event, planned.cycle_time, &planned.when});
+  }
+  for (OwnedEvent* owned : owned_) {
+    const sim::Scheduler::EventId event{owned->id_};
+    if (owned->when_ <= changed_at || !scheduler_.pending(event)) continue;
+    moved.push_back(Moved{owned->asked_, event, owned->cycle_time_, &owned->when_});
+  }
+  std::sort(moved.begin(), moved.end(),
+            [](const Moved& a, const Moved& b) { return a.asked < b.asked; });
+  for (const Moved& m : moved) {
+    *m.when = time_of_step(m.cycle_time);
+    scheduler_.move(m.event, *m.when);
   }
   for (auto& listener : divider_listeners_) listener(edge, tick_period());
 }

@@ -54,7 +54,7 @@ class CycleWindow {
   std::uint16_t tscyc_ = 0;
   std::int64_t opens_ = 0;
   std::int64_t closes_ = 0;
-  TimeBase::CycleEvent close_event_ = 0;
+  TimeBase::OwnedEvent close_event_;
 };
 
 }  // namespace sercon::chip

@@ -139,8 +139,8 @@ class TelegramList {
   void close_window();
   void fire_end();
   void cancel_event() {
-    if (event_ != 0) time_base_.cancel(event_);
-    event_ = 0;
+    if (event_.id() != 0) time_base_.cancel(event_.id());
+    event_.forget();
     scheduler_.cancel(window_judge_);
     window_judge_ = {};
   }
@@ -172,7 +172,7 @@ class TelegramList {
   ListClient& client_;
   State state_ = State::Idle;
   ListItem item_;
-  TimeBase::CycleEvent event_ = 0;          // transmit or end marker due
+  TimeBase::OwnedEvent event_;              // transmit or end marker due
   sim::Scheduler::EventId window_judge_{};  // a TCHK header's window is over
   HeaderWait wait_;               // state_ == Receive, and the header's window and address
   std::uint32_t items_read_ = 0;  // since the cycle start: more than RAM / 2 is a loop

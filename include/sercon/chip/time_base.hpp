@@ -93,8 +93,48 @@ class TimeBase : public ChipUnit {
     if (!step) return 0;
     if (planned_.size() == planned_.capacity()) prune();
     const sim::Scheduler::EventId event = scheduler_.at(*step, action, context);
-    planned_.push_back(Planned{event, cycle_time, *step});
+    planned_.push_back(Planned{event, cycle_time, *step, ++asked_});
     return event.value;
+  }
+  // A cycle-time event its owner keeps in place, for an owner with at most one pending at a
+  // time that arms several a cycle (a list walk, the MST window): armed without an entry in
+  // the time base's own record to push and prune. Dropped at cycle starts, moved by MCLKDIV
+  // changes and cancelled at reset as the others are, in the order all were asked for.
+  // Registered for the owner's lifetime: either may be destroyed first (the owner's
+  // destruction cancels its event).
+  class OwnedEvent {
+   public:
+    explicit OwnedEvent(TimeBase& time_base);
+    ~OwnedEvent();
+    OwnedEvent(const OwnedEvent&) = delete;
+    OwnedEvent& operator=(const OwnedEvent&) = delete;
+
+    CycleEvent id() const { return id_; }
+    // When the event is due: meaningful only while it is pending (a cheap first test before
+    // asking the scheduler whether it is).
+    sim::Time when() const { return when_; }
+    void forget() { id_ = 0; }  // it ran: the owner's action clears it
+
+   private:
+    friend class TimeBase;
+    TimeBase* time_base_;  // null once the time base is gone
+    sim::Scheduler& scheduler_;
+    CycleEvent id_ = 0;
+    std::int64_t cycle_time_ = 0;
+    sim::Time when_ = 0;       // kept up to date while pending
+    std::uint64_t asked_ = 0;  // order among all cycle-time events asked for
+  };
+  // at_cycle_time() into `owned` (whose earlier event has run or was cancelled). Returns its
+  // id, 0 (and no event) when the step is not ahead.
+  [[gnu::always_inline]] CycleEvent at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
+                                                  sim::Scheduler::Action action, void* context) {
+    const std::optional<sim::Time> step = step_ahead(cycle_time);
+    if (!step) return owned.id_ = 0;
+    owned.id_ = scheduler_.at(*step, action, context).value;
+    owned.cycle_time_ = cycle_time;
+    owned.when_ = *step;
+    owned.asked_ = ++asked_;
+    return owned.id_;
   }
   void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
@@ -140,6 +180,7 @@ class TimeBase : public ChipUnit {
     sim::Scheduler::EventId event;
     std::int64_t cycle_time;
     sim::Time when;  // kept up to date while pending
+    std::uint64_t asked;
   };
   // When the step out of `cycle_time` happens if it is ahead, else nullopt. A tick is ahead
   // when it comes after the last period change (earlier ones have passed) and its edge is
@@ -174,6 +215,8 @@ class TimeBase : public ChipUnit {
   DividerTicks ticks_;        // the cycle counter's divider
   DividerTicks free_;         // the free-running divider
   std::vector<Planned> planned_;
+  std::vector<OwnedEvent*> owned_;  // the registered OwnedEvents, alive
+  std::uint64_t asked_ = 0;         // cycle-time events asked for
   struct CycleStartListener {
     CycleListener listener;
     void* context;
