@@ -138,8 +138,10 @@ void TransmitPath::take(bool dma, std::uint16_t control_word, std::uint32_t cont
                                   static_cast<std::uint16_t>(dma ? 0 : buffer)};
     port.before_transmit(use, words);
   }
-  if (!fits) {
-    const std::size_t take = std::min<std::size_t>(c.len, total - std::min(filled, total));
+  // The part inside TLEN, if any: past it (or with TLEN = 0, words_ unallocated) no
+  // position in words_ is formed.
+  if (!fits && filled < total) {
+    const std::size_t take = std::min<std::size_t>(c.len, total - filled);
     std::copy_n(container_.begin(), take, words_.begin() + static_cast<std::ptrdiff_t>(filled));
   }
 }

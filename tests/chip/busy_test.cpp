@@ -365,6 +365,20 @@ TEST(Busy, APlainContainerThenOneBeyondTlenIsGatheredContainerByContainer) {
   EXPECT_TRUE(g.service.empty());
 }
 
+// TLEN = 0 with two containers: "the telegram carries exactly TLEN words (container words
+// beyond TLEN are dropped)" (docs/telegram-processing.md, "Transmit" step 8): no data goes
+// out, though both containers are read as the per-container way reads them. The second
+// one starts past an empty telegram (under UBSan: no offset applied to its null buffer).
+TEST(Busy, ContainersOfATelegramWithTlenZeroAreReadAndDropped) {
+  const std::uint16_t h = 0x0100;
+  const Gathered g = gather_at(h, 0, {0x0001, 0x1111, 0x8001, 0x2222});
+  EXPECT_EQ(g.fault, "");
+  EXPECT_TRUE(g.data.empty());
+  EXPECT_EQ(g.accesses, 4u);  // 2 control words, 2 data words
+  EXPECT_EQ(g.busy_words, word_range(h + 4, h + 7));
+  EXPECT_TRUE(g.service.empty());
+}
+
 // Second container's data past the RAM's end: a list fault ("a ... container or buffer
 // beyond the RAM", docs/telegram-processing.md, "Bad lists"), after the words inside the
 // RAM were read as the per-container way reads them (TelegramRam: a run is done word by
