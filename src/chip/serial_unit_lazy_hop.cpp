@@ -204,7 +204,7 @@ void SerialReceiver::absorb_waiting() {
       prune();
       take(append(std::move(s)));
     }
-    unit_.repeater().absorb(LineBurst{lazy.leaves, b.bit_period, b.bits});
+    unit_.repeater().absorb(lazy.leaves, b.bit_period, b.bits);
   }
 }
 

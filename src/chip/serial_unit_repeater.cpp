@@ -59,19 +59,21 @@ void SerialRepeater::take_up_received() {
 }
 
 void SerialRepeater::absorb_forwarded_now(sim::Time next) {
+  const sim::Time now = scheduler_.now();
+  const sim::Time delay = unit_.outputs().follower_delay();
+  // The usual (an own telegram absorbs the burst after them): what follows has reached TxD's
+  // listener, so every one of them is over (they all leave before it) and none is booked.
+  if (next + delay <= now) return forwarded_.clear();
   // A booking out of order (a missed trigger) throws; the bursts are let go then, so the
   // node does not throw again at every later absorb.
   struct LetGo {
     sim::CircularQueue<Forwarded>& forwarded;
     ~LetGo() { forwarded.clear(); }
   } let_go{forwarded_};
-  const sim::Time now = scheduler_.now();
-  const sim::Time delay = unit_.outputs().follower_delay();
   while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.pop_front();
-  if (next + delay <= now) forwarded_.pop_front();  // the last is over too
   for (std::size_t i = 0; i < forwarded_.size(); ++i) {
     const Forwarded& f = forwarded_[i];
-    book(LineBurst{f.leaves, f.reaching.bit_period, f.reaching.bits});
+    book(f.leaves, f.reaching.bit_period, f.reaching.bits);
   }
 }
 
@@ -88,8 +90,12 @@ void SerialRepeater::own(const LineBurst& burst) {
     unit_.outputs().line_burst(burst);
     const sim::Time end = burst.end();
     if (own_.size() == 1 && background_.back().since <= burst.start) {
-      const std::size_t last = background_.size() - 1;
-      return emit_background(end, last, background_[last].since != end);
+      // Joined half-way (it begins before the telegram's end): emit_background's last case,
+      // here without the call (mostly the idle fill the line is in anyway, a no-op).
+      const RxdSegment& s = background_.back();
+      if (s.since != end)
+        return unit_.outputs().line_condition(end, s.condition_at_join(), s.period);
+      return emit_background(end, background_.size() - 1, false);
     }
     return emit_from(end);
   }

@@ -64,8 +64,8 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
 }
 
 bool SerialTransmitter::level_at(sim::Time t) const {
-  for (const OnLine& b : sent_) {
-    if (b.start <= t && t < b.end) return false;
+  for (std::size_t i = 0; i < sent_.size(); ++i) {
+    if (sent_[i].start <= t && t < sent_[i].end) return false;
   }
   return true;
 }
@@ -73,8 +73,8 @@ bool SerialTransmitter::level_at(sim::Time t) const {
 // Back to back telegrams keep IDLE low across the seam.
 sim::Time SerialTransmitter::next_change_after(sim::Time t) const {
   const bool level = level_at(t);
-  for (const OnLine& b : sent_) {
-    for (const sim::Time c : {b.start, b.end}) {
+  for (std::size_t i = 0; i < sent_.size(); ++i) {
+    for (const sim::Time c : {sent_[i].start, sent_[i].end}) {
       if (c > t && level_at(c) != level) return c;
     }
   }

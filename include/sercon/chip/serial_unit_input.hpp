@@ -58,18 +58,20 @@ inline void drop_replaced_by(Line& line, sim::Time now) {
 }
 
 // Appends `burst` to a line (repeater, TxD) as a segment from `since`, built in its slot
-// rather than copied in: at every hop. What it needs of `burst` is taken first: the burst
-// may live in storage the append moves (a fibre's history, say).
+// rather than copied in: at every hop. What it needs of the burst is taken first (the bits
+// by value): the burst may live in storage the append moves (a fibre's history, say).
 template <class Line>
-inline void append_burst(Line& line, const LineBurst& burst, sim::Time since) {
-  const sim::Time period = burst.bit_period;
-  SharedBits bits = burst.bits;
+inline void append_burst(Line& line, sim::Time since, sim::Time period, SharedBits bits) {
   RxdSegment& s = line.emplace_back();
   s.is_burst = true;
   s.condition = LineCondition::Idle;
   s.since = since;
   s.period = period;
   s.bits = std::move(bits);
+}
+template <class Line>
+inline void append_burst(Line& line, const LineBurst& burst, sim::Time since) {
+  append_burst(line, since, burst.bit_period, burst.bits);
 }
 
 // Lazy hops (docs/serial-and-ring.md): a lazy burst is booked into `line` (a name for the

@@ -73,7 +73,7 @@ class TxdOutputs final : public PassedBursts {
   sim::Time follower_delay() const { return follower_delay_; }
   // A burst passed through before: into the line as line_burst() would, no listener told
   // (the listener books it when it asks, book_all).
-  inline void absorb(const LineBurst& burst);  // serial_unit_pass_through.hpp
+  inline void absorb(sim::Time start, sim::Time period, const SharedBits& bits);
   // PassedBursts: the bursts the lone follower took by pass_through (lazy hops, and the
   // bursts line_burst() hands it) and has not booked, booked there in order. Every burst
   // leaving TxD reaches that listener this way when it takes it, so a plain fibre books

@@ -101,23 +101,22 @@ inline void SerialRepeater::absorb_passed() {
   absorb_forwarded();
 }
 
-inline void SerialRepeater::absorb(const LineBurst& leaving) {
-  absorb_forwarded(leaving.start);  // earlier than the receiver's lazy bursts
-  book(leaving);
+inline void SerialRepeater::absorb(sim::Time leaves, sim::Time period, const SharedBits& bits) {
+  absorb_forwarded(leaves);  // earlier than the receiver's lazy bursts
+  book(leaves, period, bits);
 }
 
-inline void SerialRepeater::book(const LineBurst& leaving) {
-  const sim::Time leaves = leaving.start;
+inline void SerialRepeater::book(sim::Time leaves, sim::Time period, const SharedBits& bits) {
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
   prune();
-  append_burst(background_, leaving, leaves);
-  unit_.outputs().absorb(leaving);
+  append_burst(background_, leaves, period, bits);
+  unit_.outputs().absorb(leaves, period, bits);
 }
 
-inline void TxdOutputs::absorb(const LineBurst& burst) {
-  expect_absorbed_in_order("TxD", line_.back().since, burst.start);
+inline void TxdOutputs::absorb(sim::Time start, sim::Time period, const SharedBits& bits) {
+  expect_absorbed_in_order("TxD", line_.back().since, start);
   prune();
-  append_burst(line_, burst, burst.start);
+  append_burst(line_, start, period, bits);
   ++unbooked_;  // it took the burst by pass_through: booked when it asks (book_all)
 }
 

@@ -40,7 +40,8 @@ class SerialRepeater {
   // it to that follower, and absorb() takes it into the repeater's line (and TxD's) later,
   // as input() would have, telling no one. Inline (serial_unit_pass_through.hpp).
   inline bool would_pass(sim::Time leaves) const;
-  inline void absorb(const LineBurst& leaving);  // serial_unit_pass_through.hpp
+  // The burst as it leaves (its start `leaves`; no LineBurst built for it).
+  inline void absorb(sim::Time leaves, sim::Time period, const SharedBits& bits);
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
   inline void absorb_passed();  // serial_unit_pass_through.hpp
@@ -70,8 +71,9 @@ class SerialRepeater {
     if (!forwarded_.empty()) absorb_forwarded_now(next);
   }
   void absorb_forwarded_now(sim::Time next);
-  inline void book(const LineBurst& leaving);  // into the line and TxD's, telling no one
-  void prune() {                               // inline: at every burst
+  // Into the line and TxD's, telling no one.
+  inline void book(sim::Time leaves, sim::Time period, const SharedBits& bits);
+  void prune() {  // inline: at every burst
     const sim::Time now = scheduler_.now();
     while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
     drop_replaced_by(background_, now);

@@ -10,7 +10,7 @@
 
 #include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
-#include "sercon/sim/vector_queue.hpp"
+#include "sercon/sim/circular_queue.hpp"
 
 namespace sercon::chip {
 
@@ -41,9 +41,9 @@ class SerialTransmitter final : private LazyPin::Source {
     sim::Time start = 0;
     sim::Time end = 0;
   };
-  sim::VectorQueue<OnLine> sent_;  // own telegrams not yet over, in time order
-  sim::Time free_at_ = 0;          // end of the last telegram (or release)
-  bool level_ = true;              // line level at free_at_ (light = true)
+  sim::CircularQueue<OnLine> sent_;  // own telegrams not yet over, in time order
+  sim::Time free_at_ = 0;            // end of the last telegram (or release)
+  bool level_ = true;                // line level at free_at_ (light = true)
   LazyPin idle_;
 };
 
