@@ -188,21 +188,25 @@ void SerialReceiver::absorb_waiting() {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.reaching;
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
-    RxdSegment s{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits};
     // Mostly (an own telegram absorbs the burst that came before it) the burst is in force
     // by now and every entry before it over: prune() would then leave the burst alone, so
-    // it takes the front's place at once (its entry as append() would make it), the others
-    // dropped from the back, none moved.
+    // it takes the front's place at once (its entry as append() would make it, written in
+    // place), the others dropped from the back, none moved.
     if (lazy.arrived <= now && all_done_with(now)) {
       while (holds_more_than(1)) timeline_.pop_back();
       Entry& e = timeline_.front();
-      e.cut = s.burst_end();
+      RxdSegment& s = e.segment;
+      s.is_burst = true;
+      s.condition = LineCondition::Idle;
+      s.since = lazy.arrived;
+      s.period = b.bit_period;
+      s.bits = b.bits;
+      e.cut = lazy.ends;  // s.burst_end()
       e.serial = next_serial_++;
-      e.segment = std::move(s);
       take(e, true);
     } else {
       prune();
-      take(append(std::move(s)));
+      take(append(RxdSegment{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits}));
     }
     unit_.repeater().absorb(lazy.leaves, b.bit_period, b.bits);
   }

@@ -63,14 +63,14 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
   const sim::Time delay = unit_.outputs().follower_delay();
   // The usual (an own telegram absorbs the burst after them): what follows has reached TxD's
   // listener, so every one of them is over (they all leave before it) and none is booked.
-  if (next + delay <= now) return forwarded_.clear();
+  if (next + delay <= now) return forwarded_.drop_all();
   // A booking out of order (a missed trigger) throws; the bursts are let go then, so the
   // node does not throw again at every later absorb.
   struct LetGo {
     sim::CircularQueue<Forwarded>& forwarded;
-    ~LetGo() { forwarded.clear(); }
+    ~LetGo() { forwarded.drop_all(); }
   } let_go{forwarded_};
-  while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.pop_front();
+  while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.drop_front();
   for (std::size_t i = 0; i < forwarded_.size(); ++i) {
     const Forwarded& f = forwarded_[i];
     book(f.leaves, f.reaching.bit_period, f.reaching.bits);

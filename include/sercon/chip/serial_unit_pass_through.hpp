@@ -71,11 +71,13 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
   if (!would_pass(at)) return false;
   const sim::Time now = scheduler_.now();
   TxdOutputs& txd = unit_.outputs();
-  // Kept as it reaches TxD's listener, and handed on from here.
-  Forwarded& kept = forwarded_.emplace_back();
+  // Kept as it reaches TxD's listener, and handed on from here (built in its slot, every
+  // field set: the queue goes by drop_front(), its slots reused as they are).
+  Forwarded& kept = forwarded_.reuse_back();
   kept.leaves = at;
   kept.reaching.bit_period = segment.period;
   kept.reaching.bits = segment.bits;
+  kept.reaching.start = at;  // set by the listener; set here too, so the entry is whole
   LineListener* next = nullptr;
   if (!txd.follower_takes_into(at, kept.reaching, next)) {
     forwarded_.pop_back();
@@ -83,7 +85,7 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
   }
   const sim::Time delay = kept.reaching.start - at;
   txd.set_follower_delay(delay);
-  while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.pop_front();
+  while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.drop_front();
   const LineBurst& out = kept.reaching;  // the last: not dropped
   // A copy for whatever may absorb (drop) the forwarded bursts before it has read them:
   // this node (its TxD back to its own RxD), or a listener that is not a receiver.

@@ -102,6 +102,8 @@ class SerialRepeater {
     LineBurst reaching;  // as it reaches TxD's listener (the burst handed on)
     sim::Time leaves = 0;
   };
+  // Pushed by reuse_back(), let go by drop_front() / drop_all() (a slot keeps its bits until
+  // the push that reuses it, as the receiver's lazy bursts do).
   sim::CircularQueue<Forwarded> forwarded_;
   bool forward_unbooked_ = true;
 };
