@@ -22,7 +22,7 @@ void SerialRepeater::reset() {
   repon_ = false;
   unit_.receiver().refresh_hop_period();
   background_.clear();
-  own_.clear();
+  own_.drop_all();
   own_end_ = 0;
   unit_.outputs().line_condition(scheduler_.now(), LineCondition::Dark, 0);
 }
@@ -79,8 +79,12 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
 
 void SerialRepeater::own(const LineBurst& burst) {
   absorb_passed();
-  own_.push_back(burst);
-  own_end_ = burst.end();
+  const sim::Time end = burst.end();
+  LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
+  kept.start = burst.start;
+  kept.bit_period = burst.bit_period;
+  kept.bits = burst.bits;
+  own_end_ = end;
   prune();
   // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
   // without its walk. The telegram; then, when nothing of the background begins after its
@@ -88,7 +92,6 @@ void SerialRepeater::own(const LineBurst& burst) {
   // there); else emit_from() from its end, as emit_from(burst.start) goes on.
   if (own_.size() == 1 && !background_.empty()) {
     unit_.outputs().line_burst(burst);
-    const sim::Time end = burst.end();
     if (own_.size() == 1 && background_.back().since <= burst.start) {
       // Joined half-way (it begins before the telegram's end): emit_background's last case,
       // here without the call (mostly the idle fill the line is in anyway, a no-op).

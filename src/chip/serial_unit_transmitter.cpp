@@ -46,7 +46,9 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
                            std::to_string(free_at_) + " ps");
   }
   // Idle fill between: `0 1111111` repeated, one level change at fill bits 0, 8, 16, ...
-  const sim::Time fill_bits = (begin_at - free_at_) / period;
+  // Counted unsigned (begin_at >= free_at_, period > 0): no sign corrections.
+  const std::uint64_t fill_bits =
+      static_cast<std::uint64_t>(begin_at - free_at_) / static_cast<std::uint64_t>(period);
   if (((fill_bits + 7) / 8) % 2 != 0) level_ = !level_;
   wire::TelegramCoding coding;
   SharedBits bits = write_shared_bits(

@@ -46,7 +46,8 @@ class TxdOutputs final : public PassedBursts {
     }
     change_condition(at, condition, period);
   }
-  inline void line_burst(const LineBurst& burst);  // serial_unit_pass_through.hpp
+  // serial_unit_pass_through.hpp. Always inline: GCC made it a call at every own telegram.
+  [[gnu::always_inline]] inline void line_burst(const LineBurst& burst);
 
   // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
   // burst is announced after everything before it (would_pass), the listener may take it and

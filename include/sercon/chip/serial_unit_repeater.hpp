@@ -75,7 +75,7 @@ class SerialRepeater {
   inline void book(sim::Time leaves, sim::Time period, const SharedBits& bits);
   void prune() {  // inline: at every burst
     const sim::Time now = scheduler_.now();
-    while (!own_.empty() && own_.front().end() <= now) own_.pop_front();
+    while (!own_.empty() && own_.front().end() <= now) own_.drop_front();
     drop_replaced_by(background_, now);
   }
   // Announces the line on TxD from `t` on: the received signal (or the own idle fill when
@@ -91,7 +91,9 @@ class SerialRepeater {
   // What leaves TxD when no own telegram is in the way, in time order, the front in force
   // now: the received signal (REPON = 1, TxD times) or the own idle fill (REPON = 0).
   sim::CircularQueue<RxdSegment> background_;
-  sim::CircularQueue<LineBurst> own_;  // own telegrams not yet over, in time order
+  // Own telegrams not yet over, in time order. Pushed by reuse_back(), let go by drop_front()
+  // and drop_all() (a slot keeps its bits until the push that reuses it).
+  sim::CircularQueue<LineBurst> own_;
   // The end of the last own telegram (0 after a reset): while it is to come, own_ holds it
   // as its back; once past, nothing of its own is in the way (asked at every hop).
   sim::Time own_end_ = 0;
