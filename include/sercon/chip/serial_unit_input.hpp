@@ -51,10 +51,17 @@ inline bool drop_announced_from(Line& line, sim::Time at) {
   }
   return dropped;
 }
+// pop_front() for a line whose every push sets the whole segment (a repeater's, TxD's): the
+// bits are let go now, the rest of the slot is left for the push that reuses it.
+template <class Line>
+inline void pop_front_segment(Line& line) {
+  line.front().bits = nullptr;
+  line.drop_front();
+}
 // Drops the segments a later one has replaced by `now`; the one in force stays.
 template <class Line>
 inline void drop_replaced_by(Line& line, sim::Time now) {
-  while (line.size() > 1 && line[1].since <= now) line.pop_front();
+  while (line.size() > 1 && line[1].since <= now) pop_front_segment(line);
 }
 
 // Appends `burst` to a line (repeater, TxD) as a segment from `since`, built in its slot

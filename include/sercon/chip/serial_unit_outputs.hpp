@@ -138,7 +138,7 @@ class TxdOutputs final : public PassedBursts {
         }
         --unbooked_;
       }
-      line_.pop_front();
+      pop_front_segment(line_);
     }
   }
   // drop_announced_from for the line: the bursts not booked are its last segments.

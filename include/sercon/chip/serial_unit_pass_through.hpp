@@ -104,7 +104,16 @@ inline void SerialRepeater::absorb_passed() {
 }
 
 inline void SerialRepeater::absorb(sim::Time leaves, sim::Time period, const SharedBits& bits) {
-  absorb_forwarded(leaves);  // earlier than the receiver's lazy bursts
+  // The forwarded bursts first (earlier than the receiver's lazy ones). Mostly (an own
+  // telegram absorbs) this burst has reached TxD's listener by now, so every one of them is
+  // over: absorb_forwarded_now()'s first case, here without the call.
+  if (!forwarded_.empty()) {
+    if (leaves + unit_.outputs().follower_delay() <= scheduler_.now()) {
+      forwarded_.drop_all();
+    } else {
+      absorb_forwarded_now(leaves);
+    }
+  }
   book(leaves, period, bits);
 }
 
