@@ -79,13 +79,13 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
 
 void SerialRepeater::own(const LineBurst& burst) {
   absorb_passed();
+  prune();  // first: the telegram itself is not over (it begins at or after now)
   const sim::Time end = burst.end();
   LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
   kept.start = burst.start;
   kept.bit_period = burst.bit_period;
   kept.bits = burst.bits;
   own_end_ = end;
-  prune();
   // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
   // without its walk. The telegram; then, when nothing of the background begins after its
   // start, the background segment in force where it ends (joined half-way unless it begins
