@@ -58,17 +58,4 @@ std::size_t telegram_line_bits(std::uint8_t address, std::span<const std::uint8_
   return bits;
 }
 
-std::size_t address_end_bit(std::uint8_t address) {
-  std::size_t bits = kFlagBits + 8;
-  unsigned run = 0;
-  for (unsigned bit = 0; bit < 7; ++bit) {  // a 0 stuffed after bit 7 comes after the address
-    run = ((unsigned{address} >> bit) & 1u) != 0 ? run + 1 : 0;
-    if (run == 5) {
-      ++bits;
-      run = 0;
-    }
-  }
-  return bits;
-}
-
 }  // namespace sercon::chip

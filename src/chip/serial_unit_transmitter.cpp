@@ -57,8 +57,13 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   // The receivers' decode, known from what was encoded (docs/serial-and-ring.md, "Receiver").
   seed_decode(bits, coding.frame, address, data, coding.fcs);
   const LineBurst burst{begin_at, period, std::move(bits)};
+  // They end in order: the last one over (the usual case) means all are.
+  if (free_at_ <= now) {
+    sent_.drop_all();
+  } else {
+    while (!sent_.empty() && sent_.front().end <= now) sent_.pop_front();
+  }
   free_at_ = burst.end();
-  while (!sent_.empty() && sent_.front().end <= now) sent_.pop_front();
   sent_.push_back({burst.start, free_at_});
   unit_.repeater().own(burst);
   idle_.replan();
