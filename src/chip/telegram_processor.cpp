@@ -194,6 +194,12 @@ void TelegramProcessor::on_mst(const wire::DecodedFrame& frame, sim::Time recogn
 
 void TelegramProcessor::finish_receive(const ListItem& item, const wire::DecodedFrame& frame) {
   stop_receiving();
+  // The usual telegram inline: no outcome to look at (no error, no service work).
+  if (receive_.finish_plain(item, frame)) {
+    interrupts_.raise(Irq::Rend);
+    if (!scheduler_.pending(rscend_event_)) interrupts_.raise(Irq::Rscend);
+    return;
+  }
   ReceivePath::Outcome outcome;
   try {
     outcome = receive_.finish(item, frame, port());

@@ -160,6 +160,9 @@ class Chip {
     // The words without a mark: for a caller that looks at a structure first and then
     // marks what it read as one run (touch_run).
     const std::uint16_t* words() const { return words_; }
+    // The same for writing: a caller that writes words it has checked and marks them as
+    // one run with touch_run.
+    std::uint16_t* words_to_write() const { return words_; }
     // Words first .. first + count - 1 used now: marked and counted as read_run does.
     void touch_run(std::uint16_t first, std::size_t count) const {
       marks_.mark_run(first, count);

@@ -5,9 +5,11 @@
 // header whose telegram did not come gets RERR and NERR + 1.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -40,6 +42,57 @@ class ReceivePath {
   }
   // The telegram proved to be an MST: VAL back as before begin().
   void withdraw(const ListItem& item, bool cleared);
+  // The telegram has been detected, the usual one (finish() for any other: false, nothing
+  // read or written). Inline: at every telegram a header takes. The usual telegram:
+  // error-free and of TLEN words, for a single-buffer header without DMA
+  // whose one container is plain (no service container) and inside the RAM. What the general
+  // path does: word 0 read, the container's control word and POS read, its data written,
+  // word 0 written with VAL set (and the address without ACHK). The words are looked at
+  // first, then marked and counted: the container's as one run (read control word and POS,
+  // written data), word 0 as the update it is. All at one instant, with nothing else
+  // scheduled among the marks: the same BUSYN marks as one by one.
+  bool finish_plain(const ListItem& item, const wire::DecodedFrame& frame) {
+    const std::size_t words = item.length;
+    if (frame.error != wire::FrameError::None || frame.data.size() != 2 * words ||
+        (item.word0 & (telegram::kDma | telegram::kDbuf)) != 0)
+      return false;
+    const std::uint32_t control = item.address + telegram::kReceiveHeaderWords;
+    const std::uint32_t data = control + telegram::kReceiveContainerWords;
+    const std::uint32_t size = ram_.size();
+    if (data > size) return false;
+    std::uint16_t* const ram = ram_.words_to_write();
+    const std::uint16_t head = ram[control];
+    if (telegram::container_svfl(head) || !telegram::container_lastdc(head)) return false;
+    const std::size_t pos = ram[control + 1];
+    const std::size_t first = std::min(pos, words);
+    const std::size_t count = std::min(pos + telegram::container_len(head), words) - first;
+    if (data + count > size) return false;
+    const std::uint8_t* const bytes = frame.data.data() + 2 * first;
+    switch (count) {  // mostly a few words: no library call
+      case 3:
+        std::memcpy(ram + data + 2, bytes + 4, 2);
+        [[fallthrough]];
+      case 2:
+        std::memcpy(ram + data + 1, bytes + 2, 2);
+        [[fallthrough]];
+      case 1:
+        std::memcpy(ram + data, bytes, 2);
+        [[fallthrough]];
+      case 0:
+        break;
+      default:
+        std::memcpy(ram + data, bytes, 2 * count);
+    }
+    ram_.touch_run(control, telegram::kReceiveContainerWords + count);
+    const bool achk = item.has(telegram::kAchk);
+    const std::uint8_t address = frame.address;
+    ram_.update(item.address, [achk, address](std::uint16_t word0) {
+      auto next = static_cast<std::uint16_t>((word0 & ~telegram::kRerr) | telegram::kVal);
+      if (!achk) next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | address);
+      return next;
+    });
+    return true;
+  }
   // The telegram has been detected (ended, or cut off by an error).
   Outcome finish(const ListItem& item, const wire::DecodedFrame& frame, ServiceChannelPort& port);
   // No telegram for the header in this cycle.
