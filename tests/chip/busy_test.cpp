@@ -7,6 +7,7 @@
 #include <array>
 #include <span>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "sercon/chip/service_channel_port.hpp"
 #include "sercon/chip/telegram_list.hpp"
 #include "sercon/chip/telegram_ram.hpp"
+#include "sercon/chip/telegram_receive.hpp"
 #include "sercon/chip/telegram_transmit.hpp"
 #include "sercon/chip/time_base.hpp"
 
@@ -278,6 +280,108 @@ TEST(Busy, PlainTransmitContainersAreUsedWordByWord) {
   EXPECT_EQ(g.fault, "");
   EXPECT_EQ(g.accesses, 7u);  // 2 control words, 5 data words
   EXPECT_EQ(g.busy_words, word_range(0x0104, 0x010A));
+}
+
+// What one receive finish left behind: the RAM around the header, the accesses it made,
+// the words it used in the period, the BUSYN edges (after a µP access to `host_word` at the
+// same instant, if any), and whether the direct path (finish_plain) took the telegram.
+struct Received {
+  std::vector<std::uint16_t> ram;
+  std::uint64_t accesses = 0;
+  std::vector<std::uint16_t> busy_words;
+  std::vector<std::pair<Time, Level>> edges;
+  bool direct = false;
+  bool operator==(const Received&) const = default;
+};
+
+// A receive header at 0x0100 (word 0 `word0`, TLEN `tlen`) with one container (control word
+// `control`, POS `pos`, 4 buffer words) finished at 100 ns with `frame`: by finish_plain
+// first (`direct`) or by the general finish() only.
+Received receive_at(bool direct, std::uint16_t word0, std::uint16_t tlen, std::uint16_t control,
+                    std::uint16_t pos, const wire::DecodedFrame& frame, std::uint32_t host_word) {
+  constexpr std::uint16_t kHeader = 0x0100;
+  ChipOnBench bench(mclk(32'000'000));
+  Chip& chip = *bench.chip;
+  EdgeLog log(bench, Pin::BUSYN);
+  const std::vector<std::uint16_t> words{word0, 20,     tlen,   0x0200, 7,      control,
+                                         pos,   0xAAAA, 0xBBBB, 0xCCCC, 0xDDDD, 0xEEEE};
+  for (std::size_t i = 0; i < words.size(); ++i)
+    chip.ram_write(static_cast<std::uint16_t>(kHeader + i), words[i]);
+  bench.scheduler.run_until(100'000);
+  BusCycle c;
+  c.mcsn0 = false;
+  c.mcsn1 = false;
+  c.bhen = false;
+  if (host_word < 2048) {
+    c.address = static_cast<std::uint16_t>(2 * host_word);
+    chip.bus(c);
+  }
+  TelegramRam ram(chip);
+  DmaPort dma(chip);
+  ReceivePath path(ram, dma);
+  PassThroughServiceChannel port;
+  ListItem item;
+  item.kind = telegram::Kind::Receive;
+  item.address = kHeader;
+  item.word0 = word0;
+  item.time = 20;
+  item.length = tlen;
+  item.next = 0x0200;
+  Received r;
+  const std::uint64_t before = chip.tp_ram_accesses();
+  r.direct = direct && path.finish_plain(item, frame);
+  if (!r.direct) path.finish(item, frame, port);
+  r.accesses = chip.tp_ram_accesses() - before;
+  for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) r.ram.push_back(chip.ram_read(w));
+  bench.scheduler.run_until(300'000);
+  for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) {
+    c.address = static_cast<std::uint16_t>(2 * w);
+    if (chip.bus(c).busy) r.busy_words.push_back(w);
+  }
+  r.edges = log.edges;
+  return r;
+}
+
+// The direct path of the usual receive telegram (ReceivePath::finish_plain) leaves exactly what
+// the general one does: RAM, accesses, the words used and BUSYN against a µP access at that
+// instant; any other telegram it leaves alone (nothing read, written or marked).
+TEST(Busy, PlainReceiveFinishesAsTheGeneralPath) {
+  wire::DecodedFrame frame;
+  frame.address = 9;
+  frame.data = {0x11, 0x12, 0x21, 0x22, 0x31, 0x32};
+  for (const std::uint16_t word0 : {std::uint16_t{0x0009}, std::uint16_t{0x0C09}}) {  // ACHK
+    for (const int p : {0, 1, 2, 3, 5}) {
+      const auto pos = static_cast<std::uint16_t>(p);
+      for (const std::uint32_t host : {0x0100u, 0x0105u, 0x0107u, 0x0108u, 0x0109u, 0xFFFFu}) {
+        const Received general = receive_at(false, word0, 3, 0x8003, pos, frame, host);
+        const Received direct = receive_at(true, word0, 3, 0x8003, pos, frame, host);
+        EXPECT_TRUE(direct.direct);
+        EXPECT_EQ(direct.ram, general.ram) << word0 << " " << pos << " " << host;
+        EXPECT_EQ(direct.accesses, general.accesses);
+        EXPECT_EQ(direct.busy_words, general.busy_words);
+        EXPECT_EQ(direct.edges, general.edges);
+        if (host == 0x0100) {
+          EXPECT_EQ(direct.edges.size(), 2u);  // word 0 always collides
+        }
+      }
+    }
+  }
+  // DMA, double buffer, a service container, no LASTDC, a frame error, a length other than
+  // TLEN: finish_plain declines and leaves nothing behind (the same as the general path alone).
+  wire::DecodedFrame bad = frame;
+  bad.error = wire::FrameError::BadFcs;
+  wire::DecodedFrame longer = frame;
+  longer.data.push_back(0x41);
+  longer.data.push_back(0x42);
+  const std::vector<std::tuple<std::uint16_t, std::uint16_t, wire::DecodedFrame>> others{
+      {0x0109, 0x8003, frame}, {0x0209, 0x8003, frame}, {0x0009, 0x8403, frame},
+      {0x0009, 0x0003, frame}, {0x0009, 0x8003, bad},   {0x0009, 0x8003, longer}};
+  for (const auto& [word0, control, f] : others) {
+    const Received general = receive_at(false, word0, 3, control, 0, f, 0x0100);
+    const Received direct = receive_at(true, word0, 3, control, 0, f, 0x0100);
+    EXPECT_FALSE(direct.direct) << word0 << " " << control;
+    EXPECT_EQ(direct, general) << word0 << " " << control;
+  }
 }
 
 // The list walk reads a header or end marker as one run of words (TelegramList): exactly
