@@ -160,9 +160,19 @@ class Chip {
     // The words without a mark: for a caller that looks at a structure first and then
     // marks what it read as one run (touch_run).
     const std::uint16_t* words() const { return words_; }
-    // The same for writing: a caller that writes words it has checked and marks them as
-    // one run with touch_run.
+    // The same for writing: a caller that writes words it has checked and marks them.
     std::uint16_t* words_to_write() const { return words_; }
+    // Word `word` read and written back as change(value read), and words first .. first +
+    // count - 1 used (touch_run), at one instant: the marks and counts of the three.
+    template <typename Change>
+    std::uint16_t update_and_touch_run(std::uint16_t word, Change change, std::uint16_t first,
+                                       std::size_t count) const {
+      const std::uint16_t value = words_[word];
+      words_[word] = change(value);
+      marks_.mark_word_and_run(word, first, count);
+      accesses_ += 2 + count;
+      return value;
+    }
     // Words first .. first + count - 1 used now: marked and counted as read_run does.
     void touch_run(std::uint16_t first, std::size_t count) const {
       marks_.mark_run(first, count);

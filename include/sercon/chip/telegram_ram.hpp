@@ -73,8 +73,16 @@ class TelegramRam {
   // The RAM's words, read without a mark: for a caller that looks at a structure first and
   // then marks what it read as one run (touch_run). Each word read must be < size().
   const std::uint16_t* words() const { return port_.words(); }
-  // The same for writing (each word written must be < size(), and marked with touch_run).
+  // The same for writing (each word written must be < size(), and marked with touch_run or
+  // update_and_touch_run).
   std::uint16_t* words_to_write() { return port_.words_to_write(); }
+  // update(word, change) and touch_run(first, count) at one instant, for words the caller
+  // has checked to be < size().
+  template <class Change>
+  std::uint16_t update_and_touch_run(std::uint16_t word, Change change, std::uint16_t first,
+                                     std::size_t count) {
+    return port_.update_and_touch_run(word, change, first, count);
+  }
   // Words first .. first + count - 1 read now: marked and counted as read_run() does (and a
   // ListFault likewise if the run reaches beyond the RAM).
   void touch_run(std::uint32_t first, std::size_t count) {

@@ -83,14 +83,16 @@ class ReceivePath {
       default:
         std::memcpy(ram + data, bytes, 2 * count);
     }
-    ram_.touch_run(control, telegram::kReceiveContainerWords + count);
     const bool achk = item.has(telegram::kAchk);
     const std::uint8_t address = frame.address;
-    ram_.update(item.address, [achk, address](std::uint16_t word0) {
-      auto next = static_cast<std::uint16_t>((word0 & ~telegram::kRerr) | telegram::kVal);
-      if (!achk) next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | address);
-      return next;
-    });
+    ram_.update_and_touch_run(
+        item.address,
+        [achk, address](std::uint16_t word0) {
+          auto next = static_cast<std::uint16_t>((word0 & ~telegram::kRerr) | telegram::kVal);
+          if (!achk) next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | address);
+          return next;
+        },
+        static_cast<std::uint16_t>(control), telegram::kReceiveContainerWords + count);
     return true;
   }
   // The telegram has been detected (ended, or cut off by an error).
