@@ -257,14 +257,20 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
     ++skipped_;
     return;
   }
-  const bool val = transmit_.reread_val(item);
-  if (item.has(kEn)) transmit_.clear_send_once(item, val);
-  // Delta spec 2.9.2: the 816 resets the flag "after starting to send a telegram when
-  // initiated when the flag is set": any telegram started while it is set, also an AT of
-  // CP3/4 that it did not gate, so a request answered there brings no second AT after a
-  // fall back to CP0..2.
-  if (chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_)) flmdtadr_.set(regs_, false);
-  const auto data = transmit_.gather(item, val, port());
+  const bool flag_on = chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_);
+  std::span<const std::uint8_t> data;
+  // The usual telegram in one go: word 0 and its containers read at once (TransmitPath::
+  // gather_plain), nothing written, no flag to clear between them.
+  if (flag_on || !transmit_.gather_plain(item, data)) {
+    const bool val = transmit_.reread_val(item);
+    if (item.has(kEn)) transmit_.clear_send_once(item, val);
+    // Delta spec 2.9.2: the 816 resets the flag "after starting to send a telegram when
+    // initiated when the flag is set": any telegram started while it is set, also an AT of
+    // CP3/4 that it did not gate, so a request answered there brings no second AT after a
+    // fall back to CP0..2.
+    if (chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_)) flmdtadr_.set(regs_, false);
+    data = transmit_.gather(item, val, port());
+  }
   const sim::Time end = serial_.transmitter().send(now, item.adr(), data);
   // The previous telegram's end may be due at this very instant: raise it now.
   if (scheduler_.cancel(tend_event_)) interrupts_.raise(Irq::Tend);

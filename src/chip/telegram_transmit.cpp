@@ -5,28 +5,6 @@
 #include <cstring>
 
 namespace sercon::chip {
-namespace {
-
-// A container's words: up to 3 inline (a library call would cost more than they do).
-void copy_words(const std::uint16_t* from, std::size_t count, std::uint16_t* to) {
-  switch (count) {
-    case 3:
-      to[2] = from[2];
-      [[fallthrough]];
-    case 2:
-      to[1] = from[1];
-      [[fallthrough]];
-    case 1:
-      to[0] = from[0];
-      [[fallthrough]];
-    case 0:
-      return;
-    default:
-      std::memcpy(to, from, 2 * count);
-  }
-}
-
-}  // namespace
 
 void TransmitPath::clear_send_once(const ListItem& item, bool val) {
   auto word0 = static_cast<std::uint16_t>(item.word0 & ~(telegram::kEn | telegram::kVal));
@@ -41,24 +19,11 @@ void TransmitPath::clear_send_once(const ListItem& item, bool val) {
 // per word instead of a read per container. Returns the words filled, or kNotARun (nothing
 // read, nothing marked) for the general loop. Inline: called once, by gather().
 inline std::size_t TransmitPath::gather_run(const ListItem& item) {
-  const std::uint16_t* ram = ram_.words();
-  const std::uint32_t size = ram_.size();
-  const std::size_t total = item.length;
+  std::uint32_t end = 0;
+  const std::size_t filled = scan_run(item, end);
+  if (filled == kNotARun) return kNotARun;
   const std::uint32_t first = item.address + telegram::kTransmitHeaderWords;
-  std::uint32_t control = first;
-  std::size_t filled = 0;
-  for (;;) {  // control grows by at least one word a container: no loop
-    if (control >= size) return kNotARun;
-    const std::uint16_t control_word = ram[control];
-    const std::uint16_t len = telegram::container_len(control_word);
-    if (telegram::container_svfl(control_word) || filled + len > total || control + 1 + len > size)
-      return kNotARun;
-    copy_words(ram + control + 1, len, words_.data() + filled);
-    filled += len;
-    control += 1 + len;
-    if (telegram::container_lastdc(control_word)) break;
-  }
-  ram_.touch_run(first, control - first);
+  ram_.touch_run(first, end - first);
   return filled;
 }
 
@@ -73,10 +38,7 @@ std::span<const std::uint8_t> TransmitPath::gather(const ListItem& item, bool va
   std::size_t filled =
       item.has(telegram::kDma) || item.has(telegram::kDbuf) ? kNotARun : gather_run(item);
   if (filled == kNotARun) filled = gather_containers(item, val, port);
-  // Words the containers did not supply go out as 0.
-  if (filled < total)
-    std::fill(words_.begin() + static_cast<std::ptrdiff_t>(filled), words_.end(), 0);
-  return {reinterpret_cast<const std::uint8_t*>(words_.data()), 2 * total};
+  return laid_out(filled);
 }
 
 // The containers one by one, any storage: returns the words filled. Flattened: GCC made each

@@ -384,6 +384,132 @@ TEST(Busy, PlainReceiveFinishesAsTheGeneralPath) {
   }
 }
 
+// What one transmit start left behind (TransmitPath): the bytes gathered, the RAM around
+// the header, the accesses, the BUSYN edges after a µP access to `host_word` at the same
+// instant, or without one the words a µP access at that instant collides with, and whether
+// the direct path (gather_plain) took the telegram.
+struct Transmitted {
+  std::vector<std::uint8_t> data;
+  std::vector<std::uint16_t> ram;
+  std::uint64_t accesses = 0;
+  std::vector<std::uint16_t> busy_words;
+  std::vector<std::pair<Time, Level>> edges;
+  bool direct = false;
+  bool operator==(const Transmitted&) const = default;
+};
+
+// A transmit header at 0x0100 (word 0 `word0`, TLEN `tlen`) with the words `after` it,
+// started at 100 ns: by gather_plain first (`direct`) or by the general reread_val, EN
+// written back and gather() only, as TelegramProcessor::transmit_due does.
+Transmitted transmit_at(bool direct, std::uint16_t word0, std::uint16_t tlen,
+                        const std::vector<std::uint16_t>& after, std::uint32_t host_word) {
+  constexpr std::uint16_t kHeader = 0x0100;
+  ChipOnBench bench(mclk(32'000'000));
+  Chip& chip = *bench.chip;
+  EdgeLog log(bench, Pin::BUSYN);
+  std::vector<std::uint16_t> words{word0, 20, tlen, 0x0200};
+  words.insert(words.end(), after.begin(), after.end());
+  for (std::size_t i = 0; i < words.size(); ++i)
+    chip.ram_write(static_cast<std::uint16_t>(kHeader + i), words[i]);
+  bench.scheduler.run_until(100'000);
+  BusCycle c;
+  c.mcsn0 = false;
+  c.mcsn1 = false;
+  c.bhen = false;
+  if (host_word < 2048) {
+    c.address = static_cast<std::uint16_t>(2 * host_word);
+    chip.bus(c);
+  }
+  TelegramRam ram(chip);
+  DmaPort dma(chip);
+  TransmitPath path(ram, dma);
+  ReplacingPort port;
+  ListItem item;
+  item.kind = telegram::Kind::Transmit;
+  item.address = kHeader;
+  item.word0 = word0;
+  item.time = 20;
+  item.length = tlen;
+  item.next = 0x0200;
+  Transmitted t;
+  const std::uint64_t before = chip.tp_ram_accesses();
+  std::span<const std::uint8_t> data;
+  t.direct = direct && path.gather_plain(item, data);
+  if (!t.direct) {
+    const bool val = path.reread_val(item);
+    if (item.has(telegram::kEn)) path.clear_send_once(item, val);
+    data = path.gather(item, val, port);
+  }
+  t.data.assign(data.begin(), data.end());
+  t.accesses = chip.tp_ram_accesses() - before;
+  // Without a µP access of its own: which words collide with one now (each such access
+  // pulls BUSYN low, so not along with the edges of a µP access before the start).
+  if (host_word >= 2048) {
+    for (std::uint16_t w = kHeader; w < kHeader + 20; ++w) {
+      c.address = static_cast<std::uint16_t>(2 * w);
+      if (chip.bus(c).busy) t.busy_words.push_back(w);
+    }
+  }
+  bench.scheduler.run_until(300'000);  // BUSYN high again; a µP read now collides with none
+  t.edges = log.edges;
+  for (std::uint16_t w = kHeader; w < kHeader + 20; ++w) t.ram.push_back(chip.ram_read(w));
+  return t;
+}
+
+// The direct path of the usual transmit telegram (TransmitPath::gather_plain) leaves exactly
+// what the general one does: the bytes, RAM, accesses, the words used and BUSYN against a µP
+// access at that instant; any other telegram it leaves alone (nothing read, written or
+// marked).
+TEST(Busy, PlainTransmitStartsAsTheGeneralPath) {
+  // One container of 3 words; containers of 1 and 2 words; TLEN beyond the containers'
+  // words (the rest goes out as 0); a container of 7 words (a run past straight-line marks).
+  const std::vector<std::tuple<std::uint16_t, std::vector<std::uint16_t>>> plain{
+      {3, {0x8003, 0x1111, 0x2222, 0x3333, 0x7777}},
+      {3, {0x0001, 0x1111, 0x8002, 0x2222, 0x3333, 0x7777}},
+      {5, {0x0001, 0x1111, 0x8002, 0x2222, 0x3333, 0x7777}},
+      {7, {0x8007, 1, 2, 3, 4, 5, 6, 7, 0x7777}}};
+  for (const std::uint16_t word0 : {std::uint16_t{0x1001}, std::uint16_t{0x1401}}) {  // VAL
+    for (const auto& [tlen, after] : plain) {
+      for (const std::uint32_t host : {0x0100u, 0x0101u, 0x0103u, 0x0104u, 0x0105u, 0x0106u,
+                                       0x0107u, 0x010Bu, 0x010Cu, 0x010Du, 0xFFFFu}) {
+        const Transmitted general = transmit_at(false, word0, tlen, after, host);
+        const Transmitted direct = transmit_at(true, word0, tlen, after, host);
+        EXPECT_TRUE(direct.direct);
+        EXPECT_EQ(direct.data, general.data) << word0 << " " << tlen << " " << host;
+        EXPECT_EQ(direct.ram, general.ram);
+        EXPECT_EQ(direct.accesses, general.accesses) << word0 << " " << tlen << " " << host;
+        EXPECT_EQ(direct.busy_words, general.busy_words) << word0 << " " << tlen << " " << host;
+        EXPECT_EQ(direct.edges, general.edges) << word0 << " " << tlen << " " << host;
+        if (host == 0x0100) {
+          EXPECT_EQ(direct.edges.size(), 2u);  // word 0 always collides
+        }
+        if (host == 0x0101 || host == 0x0103) {
+          EXPECT_TRUE(direct.edges.empty());  // the rest of the header does not
+        }
+        if (host == 0xFFFF) {
+          EXPECT_EQ(direct.busy_words.front(), 0x0100);       // word 0 and the containers' words
+          EXPECT_EQ(direct.busy_words.size(), after.size());  // not the word after them
+        }
+      }
+    }
+  }
+  // EN (send once), DMA, double buffer, a service container, a container beyond TLEN:
+  // gather_plain declines and leaves nothing behind (the same as the general path alone).
+  const std::vector<std::uint16_t> one{0x8003, 0x1111, 0x2222, 0x3333, 0x7777};
+  const std::vector<std::tuple<std::uint16_t, std::uint16_t, std::vector<std::uint16_t>>> others{
+      {0x1801, 3, one},
+      {0x1101, 3, one},
+      {0x1201, 3, {0x8002, 0x1111, 0x2222, 0x3333, 0x4444, 0x7777}},
+      {0x1001, 3, {0x8403, 0x1111, 0x2222, 0x3333, 0x7777}},
+      {0x1001, 2, one}};
+  for (const auto& [word0, tlen, after] : others) {
+    const Transmitted general = transmit_at(false, word0, tlen, after, 0x0100);
+    const Transmitted direct = transmit_at(true, word0, tlen, after, 0x0100);
+    EXPECT_FALSE(direct.direct) << word0 << " " << tlen;
+    EXPECT_EQ(direct, general) << word0 << " " << tlen;
+  }
+}
+
 // The list walk reads a header or end marker as one run of words (TelegramList): exactly
 // its words, word 0 and TRT, TLEN, PT or TEND, collide in the period and count as accesses.
 TEST(Busy, ListItemsAreUsedWordByWord) {

@@ -173,6 +173,12 @@ class Chip {
       accesses_ += 2 + count;
       return value;
     }
+    // Word `word` read and words first .. first + count - 1 used (touch_run), at one
+    // instant: the marks and counts of the two.
+    void read_and_touch_run(std::uint16_t word, std::uint16_t first, std::size_t count) const {
+      marks_.mark_word_and_run(word, first, count);
+      accesses_ += 1 + count;
+    }
     // Words first .. first + count - 1 used now: marked and counted as read_run does.
     void touch_run(std::uint16_t first, std::size_t count) const {
       marks_.mark_run(first, count);

@@ -83,6 +83,11 @@ class TelegramRam {
                                      std::size_t count) {
     return port_.update_and_touch_run(word, change, first, count);
   }
+  // read(word) (its value not wanted) and touch_run(first, count) at one instant, for words
+  // the caller has checked to be < size().
+  void read_and_touch_run(std::uint16_t word, std::uint16_t first, std::size_t count) {
+    port_.read_and_touch_run(word, first, count);
+  }
   // Words first .. first + count - 1 read now: marked and counted as read_run() does (and a
   // ListFault likewise if the run reaches beyond the RAM).
   void touch_run(std::uint32_t first, std::size_t count) {

@@ -6,7 +6,10 @@
 // TLEN little-endian words.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -27,10 +30,76 @@ class TransmitPath {
   void clear_send_once(const ListItem& item, bool val);
   // The telegram's data bytes (2 * TLEN), valid until the next call.
   std::span<const std::uint8_t> gather(const ListItem& item, bool val, ServiceChannelPort& port);
+  // reread_val() and gather() for the usual telegram, at one instant: a single-buffer
+  // header without DMA or EN whose containers are all plain (gather_run). Word 0 and the
+  // container run are marked and counted in one go: the same words, values, BUSYN marks and
+  // counts as the general calls (VAL is not needed: no EN to write back, no second buffer).
+  // False for any other telegram, with nothing read or marked. Inline: at every telegram
+  // start of a list.
+  bool gather_plain(const ListItem& item, std::span<const std::uint8_t>& data) {
+    if (item.has(telegram::kEn | telegram::kDma | telegram::kDbuf)) return false;
+    words_.resize(item.length);
+    std::uint32_t end = 0;
+    const std::size_t filled = scan_run(item, end);
+    if (filled == kNotARun) return false;
+    const std::uint32_t first = item.address + telegram::kTransmitHeaderWords;
+    ram_.read_and_touch_run(item.address, static_cast<std::uint16_t>(first), end - first);
+    data = laid_out(filled);
+    return true;
+  }
 
  private:
   static constexpr std::size_t kNotARun = static_cast<std::size_t>(-1);
   std::size_t gather_run(const ListItem& item);
+  // gather_run's look at the RAM, nothing marked: the containers' words copied into words_
+  // (TLEN of them); returns the words filled and sets `end` past the last container, or
+  // kNotARun. Inline: gather_plain() and gather_run() are at every telegram start.
+  std::size_t scan_run(const ListItem& item, std::uint32_t& end) {
+    const std::uint16_t* ram = ram_.words();
+    const std::uint32_t size = ram_.size();
+    const std::size_t total = item.length;
+    std::uint32_t control = item.address + telegram::kTransmitHeaderWords;
+    std::size_t filled = 0;
+    for (;;) {  // control grows by at least one word a container: no loop
+      if (control >= size) return kNotARun;
+      const std::uint16_t control_word = ram[control];
+      const std::uint16_t len = telegram::container_len(control_word);
+      if (telegram::container_svfl(control_word) || filled + len > total ||
+          control + 1 + len > size)
+        return kNotARun;
+      copy_words(ram + control + 1, len, words_.data() + filled);
+      filled += len;
+      control += 1 + len;
+      if (telegram::container_lastdc(control_word)) break;
+    }
+    end = control;
+    return filled;
+  }
+  // A container's words: up to 3 inline (a library call would cost more than they do).
+  static void copy_words(const std::uint16_t* from, std::size_t count, std::uint16_t* to) {
+    switch (count) {
+      case 3:
+        to[2] = from[2];
+        [[fallthrough]];
+      case 2:
+        to[1] = from[1];
+        [[fallthrough]];
+      case 1:
+        to[0] = from[0];
+        [[fallthrough]];
+      case 0:
+        return;
+      default:
+        std::memcpy(to, from, 2 * count);
+    }
+  }
+  // words_ with the words from `filled` on as 0 (the containers did not supply them), as
+  // the telegram's bytes.
+  std::span<const std::uint8_t> laid_out(std::size_t filled) {
+    if (filled < words_.size())
+      std::fill(words_.begin() + static_cast<std::ptrdiff_t>(filled), words_.end(), 0);
+    return {reinterpret_cast<const std::uint8_t*>(words_.data()), 2 * words_.size()};
+  }
   std::size_t gather_containers(const ListItem& item, bool val, ServiceChannelPort& port);
   void take(bool dma, std::uint16_t control_word, std::uint32_t control, std::uint32_t buffer,
             std::size_t filled, ServiceChannelPort& port);
