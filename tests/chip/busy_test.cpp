@@ -283,8 +283,9 @@ TEST(Busy, PlainTransmitContainersAreUsedWordByWord) {
 }
 
 // What one receive finish left behind: the RAM around the header, the accesses it made,
-// the words it used in the period, the BUSYN edges (after a µP access to `host_word` at the
-// same instant, if any), and whether the direct path (finish_plain) took the telegram.
+// the BUSYN edges after a µP access to `host_word` at the same instant, or without one the
+// words a µP access at that instant collides with, and whether the direct path
+// (finish_plain) took the telegram.
 struct Received {
   std::vector<std::uint16_t> ram;
   std::uint64_t accesses = 0;
@@ -332,13 +333,17 @@ Received receive_at(bool direct, std::uint16_t word0, std::uint16_t tlen, std::u
   r.direct = direct && path.finish_plain(item, frame);
   if (!r.direct) path.finish(item, frame, port);
   r.accesses = chip.tp_ram_accesses() - before;
-  for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) r.ram.push_back(chip.ram_read(w));
-  bench.scheduler.run_until(300'000);
-  for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) {
-    c.address = static_cast<std::uint16_t>(2 * w);
-    if (chip.bus(c).busy) r.busy_words.push_back(w);
+  // Without a µP access of its own: which words collide with one now (each such access
+  // pulls BUSYN low, so not along with the edges of a µP access before the finish).
+  if (host_word >= 2048) {
+    for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) {
+      c.address = static_cast<std::uint16_t>(2 * w);
+      if (chip.bus(c).busy) r.busy_words.push_back(w);
+    }
   }
+  bench.scheduler.run_until(300'000);  // BUSYN high again; a µP read now collides with none
   r.edges = log.edges;
+  for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) r.ram.push_back(chip.ram_read(w));
   return r;
 }
 
@@ -362,6 +367,11 @@ TEST(Busy, PlainReceiveFinishesAsTheGeneralPath) {
         EXPECT_EQ(direct.edges, general.edges);
         if (host == 0x0100) {
           EXPECT_EQ(direct.edges.size(), 2u);  // word 0 always collides
+        }
+        if (host >= 2048) {  // word 0 and the control word are always used
+          ASSERT_GE(general.busy_words.size(), 2u);
+          EXPECT_EQ(general.busy_words[0], 0x0100);
+          EXPECT_EQ(general.busy_words[1], 0x0105);
         }
       }
     }

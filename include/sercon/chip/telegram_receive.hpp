@@ -65,7 +65,9 @@ class ReceivePath {
     if (telegram::container_svfl(head) || !telegram::container_lastdc(head)) return false;
     const std::size_t pos = ram[control + 1];
     const std::size_t first = std::min(pos, words);
-    const std::size_t count = std::min(pos + telegram::container_len(head), words) - first;
+    // At most TLEN words: 16 bits, which also tells GCC the copy below is bounded.
+    const auto count =
+        static_cast<std::uint16_t>(std::min(pos + telegram::container_len(head), words) - first);
     if (data + count > size) return false;
     const std::uint8_t* const bytes = frame.data.data() + 2 * first;
     switch (count) {  // mostly a few words: no library call
