@@ -244,7 +244,8 @@ void Scheduler::run_callback(std::uint32_t index) {
 // Each event is one batch of signal changes (signal.hpp): what its pins do is heard once
 // the event is done, so a watcher never sees a model half-way through an event. One
 // Signal::Steps for the run: the batch is not opened and closed again at every event.
-// front() and run() in one: the entry and its slot are looked up once per event.
+// front() and run() in one loop: the entry is looked up once per event, and the slot of the
+// generation check is the one run() takes (inline: the compiler loads it once).
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
   Signal::Steps steps;
@@ -263,17 +264,7 @@ void Scheduler::run_until(Time until) {
       continue;
     }
     if (entry.when > until) break;
-    near_.head = head + 1;
-    now_ = entry.when;
-    // Take the event out before running it: it may schedule others (slots_ may grow).
-    if (slot.action != nullptr) {
-      const Action action = slot.action;
-      void* const context = slot.context;
-      free_slot(index);
-      action(context);
-    } else {
-      run_callback(index);
-    }
+    run(entry);
     steps.done();
   }
   now_ = until;
