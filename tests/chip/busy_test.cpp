@@ -282,6 +282,46 @@ TEST(Busy, PlainTransmitContainersAreUsedWordByWord) {
   EXPECT_EQ(g.busy_words, word_range(0x0104, 0x010A));
 }
 
+// A chip whose RAM holds `words` from `header` on, at 100 ns, after a µP access to
+// `host_word` at that instant (none for 2048 and above): the bench of the twin tests below,
+// which run a direct and a general path on two such chips and compare what each left.
+struct TwinBench {
+  TwinBench(std::uint16_t at, const std::vector<std::uint16_t>& words, std::uint32_t host)
+      : header(at), host_word(host) {
+    for (std::size_t i = 0; i < words.size(); ++i)
+      chip.ram_write(static_cast<std::uint16_t>(header + i), words[i]);
+    bench.scheduler.run_until(100'000);
+    if (host_word < 2048) access(host_word);
+  }
+  bool access(std::uint32_t word) {
+    BusCycle c;
+    c.mcsn0 = false;
+    c.mcsn1 = false;
+    c.bhen = false;
+    c.address = static_cast<std::uint16_t>(2 * word);  // byte address of the word
+    return chip.bus(c).busy;
+  }
+  // After the path ran: without a µP access of its own, the words of `span` from the header
+  // a µP access collides with now (each pulls BUSYN low, so not along with the edges of a µP
+  // access before the path); then, once BUSYN is high again (a µP read collides with none),
+  // the BUSYN edges and the RAM.
+  void look(std::uint16_t span, std::vector<std::uint16_t>& busy_words,
+            std::vector<std::pair<Time, Level>>& edges, std::vector<std::uint16_t>& ram) {
+    if (host_word >= 2048) {
+      for (std::uint16_t w = header; w < header + span; ++w)
+        if (access(w)) busy_words.push_back(w);
+    }
+    bench.scheduler.run_until(300'000);
+    edges = log.edges;
+    for (std::uint16_t w = header; w < header + span; ++w) ram.push_back(chip.ram_read(w));
+  }
+  ChipOnBench bench{mclk(32'000'000)};
+  Chip& chip = *bench.chip;
+  EdgeLog log{bench, Pin::BUSYN};
+  std::uint16_t header;
+  std::uint32_t host_word;
+};
+
 // What one receive finish left behind: the RAM around the header, the accesses it made,
 // the BUSYN edges after a µP access to `host_word` at the same instant, or without one the
 // words a µP access at that instant collides with, and whether the direct path
@@ -301,24 +341,11 @@ struct Received {
 Received receive_at(bool direct, std::uint16_t word0, std::uint16_t tlen, std::uint16_t control,
                     std::uint16_t pos, const wire::DecodedFrame& frame, std::uint32_t host_word) {
   constexpr std::uint16_t kHeader = 0x0100;
-  ChipOnBench bench(mclk(32'000'000));
-  Chip& chip = *bench.chip;
-  EdgeLog log(bench, Pin::BUSYN);
-  const std::vector<std::uint16_t> words{word0, 20,     tlen,   0x0200, 7,      control,
-                                         pos,   0xAAAA, 0xBBBB, 0xCCCC, 0xDDDD, 0xEEEE};
-  for (std::size_t i = 0; i < words.size(); ++i)
-    chip.ram_write(static_cast<std::uint16_t>(kHeader + i), words[i]);
-  bench.scheduler.run_until(100'000);
-  BusCycle c;
-  c.mcsn0 = false;
-  c.mcsn1 = false;
-  c.bhen = false;
-  if (host_word < 2048) {
-    c.address = static_cast<std::uint16_t>(2 * host_word);
-    chip.bus(c);
-  }
-  TelegramRam ram(chip);
-  DmaPort dma(chip);
+  TwinBench twin(kHeader,
+                 {word0, 20, tlen, 0x0200, 7, control, pos, 0xAAAA, 0xBBBB, 0xCCCC, 0xDDDD, 0xEEEE},
+                 host_word);
+  TelegramRam ram(twin.chip);
+  DmaPort dma(twin.chip);
   ReceivePath path(ram, dma);
   PassThroughServiceChannel port;
   ListItem item;
@@ -329,21 +356,11 @@ Received receive_at(bool direct, std::uint16_t word0, std::uint16_t tlen, std::u
   item.length = tlen;
   item.next = 0x0200;
   Received r;
-  const std::uint64_t before = chip.tp_ram_accesses();
+  const std::uint64_t before = twin.chip.tp_ram_accesses();
   r.direct = direct && path.finish_plain(item, frame);
   if (!r.direct) path.finish(item, frame, port);
-  r.accesses = chip.tp_ram_accesses() - before;
-  // Without a µP access of its own: which words collide with one now (each such access
-  // pulls BUSYN low, so not along with the edges of a µP access before the finish).
-  if (host_word >= 2048) {
-    for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) {
-      c.address = static_cast<std::uint16_t>(2 * w);
-      if (chip.bus(c).busy) r.busy_words.push_back(w);
-    }
-  }
-  bench.scheduler.run_until(300'000);  // BUSYN high again; a µP read now collides with none
-  r.edges = log.edges;
-  for (std::uint16_t w = kHeader; w < kHeader + 16; ++w) r.ram.push_back(chip.ram_read(w));
+  r.accesses = twin.chip.tp_ram_accesses() - before;
+  twin.look(16, r.busy_words, r.edges, r.ram);
   return r;
 }
 
@@ -414,24 +431,11 @@ struct Transmitted {
 Transmitted transmit_at(bool direct, std::uint16_t word0, std::uint16_t tlen,
                         const std::vector<std::uint16_t>& after, std::uint32_t host_word) {
   constexpr std::uint16_t kHeader = 0x0100;
-  ChipOnBench bench(mclk(32'000'000));
-  Chip& chip = *bench.chip;
-  EdgeLog log(bench, Pin::BUSYN);
   std::vector<std::uint16_t> words{word0, 20, tlen, 0x0200};
   words.insert(words.end(), after.begin(), after.end());
-  for (std::size_t i = 0; i < words.size(); ++i)
-    chip.ram_write(static_cast<std::uint16_t>(kHeader + i), words[i]);
-  bench.scheduler.run_until(100'000);
-  BusCycle c;
-  c.mcsn0 = false;
-  c.mcsn1 = false;
-  c.bhen = false;
-  if (host_word < 2048) {
-    c.address = static_cast<std::uint16_t>(2 * host_word);
-    chip.bus(c);
-  }
-  TelegramRam ram(chip);
-  DmaPort dma(chip);
+  TwinBench twin(kHeader, words, host_word);
+  TelegramRam ram(twin.chip);
+  DmaPort dma(twin.chip);
   TransmitPath path(ram, dma);
   ReplacingPort port;
   ListItem item;
@@ -442,7 +446,7 @@ Transmitted transmit_at(bool direct, std::uint16_t word0, std::uint16_t tlen,
   item.length = tlen;
   item.next = 0x0200;
   Transmitted t;
-  const std::uint64_t before = chip.tp_ram_accesses();
+  const std::uint64_t before = twin.chip.tp_ram_accesses();
   std::span<const std::uint8_t> data;
   t.direct = direct && path.gather_plain(item, data);
   if (!t.direct) {
@@ -451,18 +455,8 @@ Transmitted transmit_at(bool direct, std::uint16_t word0, std::uint16_t tlen,
     data = path.gather(item, val, port);
   }
   t.data.assign(data.begin(), data.end());
-  t.accesses = chip.tp_ram_accesses() - before;
-  // Without a µP access of its own: which words collide with one now (each such access
-  // pulls BUSYN low, so not along with the edges of a µP access before the start).
-  if (host_word >= 2048) {
-    for (std::uint16_t w = kHeader; w < kHeader + 20; ++w) {
-      c.address = static_cast<std::uint16_t>(2 * w);
-      if (chip.bus(c).busy) t.busy_words.push_back(w);
-    }
-  }
-  bench.scheduler.run_until(300'000);  // BUSYN high again; a µP read now collides with none
-  t.edges = log.edges;
-  for (std::uint16_t w = kHeader; w < kHeader + 20; ++w) t.ram.push_back(chip.ram_read(w));
+  t.accesses = twin.chip.tp_ram_accesses() - before;
+  twin.look(20, t.busy_words, t.edges, t.ram);
   return t;
 }
 
