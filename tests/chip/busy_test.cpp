@@ -315,6 +315,17 @@ struct TwinBench {
     edges = log.edges;
     for (std::uint16_t w = header; w < header + span; ++w) ram.push_back(chip.ram_read(w));
   }
+  // The list item the walk makes of the header (time 20, next 0x0200, as in its words).
+  ListItem item(telegram::Kind kind, std::uint16_t word0, std::uint16_t tlen) const {
+    ListItem i;
+    i.kind = kind;
+    i.address = header;
+    i.word0 = word0;
+    i.time = 20;
+    i.length = tlen;
+    i.next = 0x0200;
+    return i;
+  }
   ChipOnBench bench{mclk(32'000'000)};
   Chip& chip = *bench.chip;
   EdgeLog log{bench, Pin::BUSYN};
@@ -348,13 +359,7 @@ Received receive_at(bool direct, std::uint16_t word0, std::uint16_t tlen, std::u
   DmaPort dma(twin.chip);
   ReceivePath path(ram, dma);
   PassThroughServiceChannel port;
-  ListItem item;
-  item.kind = telegram::Kind::Receive;
-  item.address = kHeader;
-  item.word0 = word0;
-  item.time = 20;
-  item.length = tlen;
-  item.next = 0x0200;
+  const ListItem item = twin.item(telegram::Kind::Receive, word0, tlen);
   Received r;
   const std::uint64_t before = twin.chip.tp_ram_accesses();
   r.direct = direct && path.finish_plain(item, frame);
@@ -438,13 +443,7 @@ Transmitted transmit_at(bool direct, std::uint16_t word0, std::uint16_t tlen,
   DmaPort dma(twin.chip);
   TransmitPath path(ram, dma);
   ReplacingPort port;
-  ListItem item;
-  item.kind = telegram::Kind::Transmit;
-  item.address = kHeader;
-  item.word0 = word0;
-  item.time = 20;
-  item.length = tlen;
-  item.next = 0x0200;
+  const ListItem item = twin.item(telegram::Kind::Transmit, word0, tlen);
   Transmitted t;
   const std::uint64_t before = twin.chip.tp_ram_accesses();
   std::span<const std::uint8_t> data;
