@@ -163,12 +163,12 @@ template <class Full>
   }
 }
 
-// Address, data and FCS (low byte first) as words of up to 8 bytes, the first byte lowest:
-// `word(bytes, n)` for each, in line order. The FCS is worked out on the way: returned.
-template <class Word>
-[[gnu::always_inline]] inline std::uint16_t telegram_words(std::uint8_t address,
+// Address, data and FCS (low byte first) stuffed into `d`, up to 8 bytes at a time (each
+// full word to `full`); the FCS is worked out on the same words and returned.
+template <class Full>
+[[gnu::always_inline]] inline std::uint16_t stuff_telegram(Decoded& d, std::uint8_t address,
                                                            std::span<const std::uint8_t> data,
-                                                           const Word& word) {
+                                                           const Full& full) {
   const std::uint8_t* p = data.data();
   std::size_t n = data.size();
   Fcs16 fcs;
@@ -179,7 +179,7 @@ template <class Word>
   n -= k - 1;
   while (n > 0) {  // w is 8 bytes, and more follow
     fcs.update_word(w, 8);
-    word(w, 8u);
+    stuff_word(d, w, 8u, full);
     k = n < 8 ? n : 8;
     w = k == 8 ? load_le8(p) : load_le(p, k);
     p += k;
@@ -189,10 +189,10 @@ template <class Word>
   fcs.update_word(w, static_cast<unsigned>(k));
   const std::uint16_t v = fcs.value();
   if (k <= 6) {
-    word(w | std::uint64_t{v} << (8 * k), static_cast<unsigned>(k + 2));
+    stuff_word(d, w | std::uint64_t{v} << (8 * k), static_cast<unsigned>(k + 2), full);
   } else {
-    word(w, static_cast<unsigned>(k));
-    word(std::uint64_t{v}, 2u);
+    stuff_word(d, w, static_cast<unsigned>(k), full);
+    stuff_word(d, std::uint64_t{v}, 2u, full);
   }
   return v;
 }
@@ -269,9 +269,7 @@ template <class Full>
                                                           const Full& full) {
   put(d, 0x7E, 8, full);  // flag; the stuffing count starts after it
   d.run = 0;
-  const std::uint16_t v = telegram_words(
-      address, data,
-      [&d, &full](std::uint64_t bytes, unsigned n) { stuff_word(d, bytes, n, full); });
+  const std::uint16_t v = stuff_telegram(d, address, data, full);
   put(d, 0x7E, 8, full);
   return v;
 }
