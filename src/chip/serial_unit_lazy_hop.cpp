@@ -31,7 +31,7 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     const LineBurst* out = nullptr;
     if (!at->try_lazy_hop(*b, next, out)) {
       at->absorb_lazy();
-      return at->announce(RxdSegment::of(*b));
+      return at->announce(*b);
     }
     ++chain_depth;
     ++links.taken;

@@ -99,11 +99,12 @@ void SerialReceiver::refuse_more(sim::Time now) const {
       "master too); switch one repeater off, as Ring::switch_on_lines does for the master");
 }
 
-// (A burst's entry built in place from the LineBurst, without the RxdSegment, took 500
-// fewer instructions per 8-slave cycle but ran 20 % slower with 254 slaves: the lazy-hop
-// loop that calls this got worse code. docs/performance.md, fourteenth session.)
-void SerialReceiver::announce(RxdSegment&& segment) {
-  const sim::Time at = segment.since;
+// A burst's entry is built in place from the LineBurst (no RxdSegment made and moved in).
+// The lazy-hop loop that calls this is sensitive to code layout: a version where its call
+// was one argument to an out-of-line announce(const LineBurst&) ran 20 % slower with 254
+// slaves (fewer instructions); time it at 254 slaves after any change here
+// (docs/performance.md, fourteenth and sixteenth sessions).
+void SerialReceiver::announce(sim::Time at, const LineBurst* burst, RxdSegment* segment) {
   const sim::Time now = scheduler_.now();
   if (at < now) refuse_past(at, now);
   // Mostly a change after everything announced before: nothing to drop or cut.
@@ -112,7 +113,8 @@ void SerialReceiver::announce(RxdSegment&& segment) {
       (last.segment.since >= at || (last.segment.is_burst && at < last.cut)) && supersede(at);
   prune();
   if (timeline_.size() >= kMaxTimeline) refuse_more(now);
-  Entry& e = append(std::move(segment));
+  Entry& e = burst != nullptr ? timeline_.emplace_back(*burst, next_serial_++)
+                              : append(std::move(*segment));
   if (!unit_.running()) return;
   take(e, true);
   if (changed) {

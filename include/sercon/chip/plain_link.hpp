@@ -29,7 +29,7 @@ class PlainLink {
   bool pass_checked(const LineBurst& burst, PassedBursts& sender, LineListener*& next,
                     const LineBurst*& out) {
     if (!plain_) return false;
-    if (passed_from_ != nullptr && passed_from_ != &sender) return false;
+    if (passed_from_ != &sender && passed_from_ != nullptr) return false;  // mostly the same sender
     passed_from_ = &sender;
     passed_.start = last_passed_ = burst.start + delay_;
     passed_.bit_period = burst.bit_period;
@@ -42,7 +42,7 @@ class PlainLink {
   // hop): only when it arrives there, the burst leaving at `leaves`.
   bool pass_at(sim::Time leaves, PassedBursts& sender, LineListener*& next, sim::Time& arrives) {
     if (!plain_) return false;
-    if (passed_from_ != nullptr && passed_from_ != &sender) return false;
+    if (passed_from_ != &sender && passed_from_ != nullptr) return false;  // mostly the same sender
     passed_from_ = &sender;
     arrives = last_passed_ = leaves + delay_;
     next = output_;

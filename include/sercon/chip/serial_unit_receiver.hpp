@@ -189,6 +189,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     // User-provided: value-initialising the aggregate cleared all of it first.
     Entry(RxdSegment&& s, sim::Time c, std::uint64_t n)
         : segment(std::move(s)), cut(c), serial(n) {}
+    // A burst's entry built in place (the usual read: no segment to move in).
+    Entry(const LineBurst& b, std::uint64_t n)
+        : segment{true, LineCondition::Idle, b.start, b.bit_period, b.bits},
+          cut(b.end()),
+          serial(n) {}
     RxdSegment segment;
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
@@ -203,7 +208,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     bool telegram = false;  // the detection; false: address in
   };
 
-  void announce(RxdSegment&& segment);
+  void announce(RxdSegment&& segment) { announce(segment.since, nullptr, &segment); }
+  // A burst read: its entry built in place.
+  void announce(const LineBurst& burst) { announce(burst.start, &burst, nullptr); }
+  // What changes at `at`: `burst`, else `segment` (moved into the timeline).
+  void announce(sim::Time at, const LineBurst* burst, RxdSegment* segment);
   // Out of line, so announce() carries no message building.
   [[noreturn, gnu::cold, gnu::noinline]] static void refuse_past(sim::Time at, sim::Time now);
   [[noreturn, gnu::cold, gnu::noinline]] void refuse_more(sim::Time now) const;
