@@ -27,6 +27,7 @@
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
 #include "sercon/sim/circular_queue.hpp"
+#include "sercon/sim/front_drop_vector.hpp"
 #include "sercon/sim/reciprocal.hpp"
 #include "sercon/sim/scheduler.hpp"
 
@@ -369,11 +370,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   const ReceiveWants* wants_ = nullptr;  // interest_->published(), read at every ask
   // interest_->may_want_addressed(), asked again at every plan and after every report.
   bool addressed_wanted_ = true;
-  // Never empty; front in force now (or earlier). A vector: it holds a handful of entries,
-  // and a deque of entries this size would allocate a block every second one. (A queue of
-  // slots reused in place, which moves nothing when the front goes, ran 25 % slower with
-  // 254 slaves: its slots, cycled through, spread each node's timeline over more memory.)
-  std::vector<Entry> timeline_;
+  // Never empty; front in force now (or earlier). It holds a handful of entries, and the
+  // front goes at most reads: a FrontDropVector moves none then (a deque of entries this
+  // size would allocate a block every second one).
+  sim::FrontDropVector<Entry> timeline_;
   std::uint64_t next_serial_ = 1;
   // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach the
   // next receiver (the burst the hop handed on, so it needs no copy of its own), and when

@@ -114,12 +114,7 @@ inline void SerialReceiver::prune() {
   while (holds_more_than(1) && timeline_[1].segment.since <= now) {
     Entry& e = timeline_.front();
     if (!done_with(e, now)) return;
-    if (!holds_more_than(2)) {  // mostly two: the one after it moves to the front
-      e = std::move(timeline_.back());
-      timeline_.pop_back();
-      return;
-    }
-    timeline_.erase(timeline_.begin());
+    timeline_.pop_front();  // the others stay where they are
   }
 }
 
