@@ -33,6 +33,10 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
       scheduler_(unit.chip().scheduler()),
       mclk_(unit.chip().mclk()),
       recactn_(unit.chip(), Pin::RECACTN, *this) {
+  start_report_event_ = scheduler_.own(
+      [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<false>(); }, this);
+  telegram_report_event_ = scheduler_.own(
+      [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<true>(); }, this);
   timeline_.emplace_back(RxdSegment{}, 0, 0);
   const FieldRef& recact = unit.fields().recact;
   unit.chip().regs().on_read(recact.address, [this, mask = recact.mask](std::uint16_t stored) {
@@ -42,7 +46,8 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
 }
 
 SerialReceiver::~SerialReceiver() {
-  scheduler_.cancel(report_event_);
+  scheduler_.disown(start_report_event_);
+  scheduler_.disown(telegram_report_event_);
   scheduler_.cancel(monitor_event_);
   for (const Deferred& d : deferred_) scheduler_.cancel(d.event);
 }
@@ -247,9 +252,9 @@ std::vector<RxdSegment> SerialReceiver::input_from_now() const {
 
 void SerialReceiver::reset() {
   absorb_lazy();
-  scheduler_.cancel(report_event_);
+  cancel_report();
   scheduler_.cancel(monitor_event_);
-  report_event_ = monitor_event_ = {};
+  monitor_event_ = {};
   for (const Deferred& d : deferred_) scheduler_.cancel(d.event);
   deferred_.clear();
   for (Entry& e : timeline_) {
@@ -352,7 +357,7 @@ void SerialReceiver::plan_reports() {
   const sim::Time now = scheduler_.now();
   // Mostly (a change in what the processor waits for) every report is past: what the walk
   // would find, without it.
-  if (lazy_.empty() && report_event_.value == 0 && all_past(now)) return;
+  if (lazy_.empty() && !report_armed_ && all_past(now)) return;
   plan_by_walk(now);
 }
 
@@ -365,12 +370,10 @@ void SerialReceiver::plan_by_walk(sim::Time now) {
       if (e.decode && !all_past(e, now)) scan(e, now, best, false);
     }
   }
-  const bool same = report_event_.value != 0 && best.when == report_.when &&
-                    best.serial == report_.serial && best.frame == report_.frame &&
-                    best.telegram == report_.telegram;
+  const bool same = report_armed_ && best.when == report_.when && best.serial == report_.serial &&
+                    best.frame == report_.frame && best.telegram == report_.telegram;
   if (same) return;
-  scheduler_.cancel(report_event_);
-  report_event_ = {};
+  cancel_report();
   report_ = best;
   if (best.when == kNever) return;
   arm(best);
@@ -379,20 +382,20 @@ void SerialReceiver::plan_by_walk(sim::Time now) {
 // Inline in announce(): the usual read takes consider_one() without a call.
 inline void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
-  if (report_event_.value == 0 && e.frames.size() == 1 && on_start_ && on_telegram_) {
+  if (!report_armed_ && e.frames.size() == 1 && on_start_ && on_telegram_) {
     return consider_one(e);  // the usual read: one frame, nothing planned
   }
   consider_more(e);
 }
 
 void SerialReceiver::consider_more(Entry& e) {
-  const sim::Time planned = report_event_.value != 0 ? report_.when : kNever;
+  const sim::Time planned = report_armed_ ? report_.when : kNever;
   if (planned <= e.segment.since) return;  // its reports all come after the planned one
   const sim::Time now = scheduler_.now();
   Report best{planned, 0, 0, false};
   scan(e, now, best, true);
   if (best.serial == 0) return;  // the planned report stays the earliest
-  scheduler_.cancel(report_event_);
+  cancel_report();
   arm(best);
 }
 
@@ -415,18 +418,16 @@ void SerialReceiver::consider_more(Entry& e) {
   arm(Report{st.telegram_report, e.serial, 0, true});
 }
 
-// The report event for `r`, none pending; an action of its own per kind of report.
+// The report event for `r`, none pending: the owned slot of its kind.
 inline void SerialReceiver::arm(const Report& r) {
   report_ = r;
-  const sim::Scheduler::Action fire =
-      r.telegram ? [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<true>(); }
-                 : [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<false>(); };
-  report_event_ = scheduler_.at(r.when, fire, this);
+  scheduler_.arm_owned(r.telegram ? telegram_report_event_ : start_report_event_, r.when);
+  report_armed_ = true;
 }
 
 template <bool kTelegram>
 void SerialReceiver::fire_report() {
-  report_event_ = {};
+  report_armed_ = false;
   const Report r = report_;
   Entry* e = find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
@@ -459,7 +460,7 @@ void SerialReceiver::fire_report() {
 // an entry before is still to come, nor the frame's start report, so a plan would find
 // nothing (a walk of the entries before, all past, says so more cheaply than a plan).
 inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
-  if (!lazy_.empty() || report_event_.value != 0 || fired.frame != 0) return false;
+  if (!lazy_.empty() || report_armed_ || fired.frame != 0) return false;
   const Entry& last = timeline_.back();
   if (last.serial != fired.serial || !last.decode || last.frames.size() != 1) return false;
   const sim::Time now = scheduler_.now();
@@ -497,7 +498,7 @@ inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
   if (st.end_done) return false;
   if (!wants_telegram(st.start, e->decode->frames[fired.frame])) return false;
   const sim::Time t = telegram_report(*e, fired.frame);
-  if (t < scheduler_.now() || t == kNever || report_event_.value != 0) return false;
+  if (t < scheduler_.now() || t == kNever || report_armed_) return false;
   arm(Report{t, fired.serial, fired.frame, true});
   return true;
 }

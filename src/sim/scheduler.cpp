@@ -191,6 +191,23 @@ Scheduler::EventId Scheduler::at(Time when, Callback callback) {
   return take_slot(index, when);
 }
 
+Scheduler::OwnedSlot Scheduler::own(Action action, void* context) {
+  const std::uint32_t index = new_slot();  // a fresh one: no stale EventId names it
+  Slot& slot = slots_[index];
+  slot.context = context;
+  slot.next_free = kOwned | static_cast<std::uint32_t>(owned_actions_.size());
+  owned_actions_.push_back(action);
+  return index;
+}
+
+void Scheduler::disown(OwnedSlot owned) {
+  cancel_owned(owned);  // even: not pending
+  Slot& slot = slots_[owned];
+  slot.context = nullptr;
+  ++slot.generation;  // odd, as a taken slot's: free_slot() makes it even again
+  free_slot(owned);   // and links it (next_free no longer marks it owned)
+}
+
 std::size_t Scheduler::pending_count() const {
   return static_cast<std::size_t>(std::count_if(
       slots_.begin(), slots_.end(), [](const Slot& slot) { return slot.generation % 2 == 1; }));
@@ -228,6 +245,9 @@ inline void Scheduler::run(const Entry& entry) {
     void* const context = slot.context;
     free_slot(index);
     action(context);
+  } else if ((slot.next_free & kOwned) != 0) {
+    ++slot.generation;  // even: no longer pending (the action may arm it again)
+    owned_actions_[slot.next_free & ~kOwned](slot.context);
   } else {
     run_callback(index);
   }

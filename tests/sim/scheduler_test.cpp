@@ -246,6 +246,129 @@ TEST(Scheduler, MovingAnEventInACancelledOnesSlotMovesThatEvent) {
   EXPECT_EQ(ran, 200);
 }
 
+// An owned slot (a receiver's report event) is queued as at() queues an event: after those
+// already due at its time, whether armed from outside or again from its own action; a
+// cancelled one never runs; disowned, its slot goes back to the free list.
+TEST(Scheduler, OwnedEventsRunWhereAtWouldHavePutThem) {
+  Scheduler s;
+  std::vector<char> order;
+  struct Owner {
+    Scheduler* s;
+    std::vector<char>* order;
+    Scheduler::OwnedSlot slot = 0;
+    int again = 2;  // arms itself again this many times, 10 ps on
+  } owner{&s, &order};
+  owner.slot = s.own(
+      [](void* self) {
+        auto* o = static_cast<Owner*>(self);
+        o->order->push_back('o');
+        if (o->again-- > 0) o->s->arm_owned(o->slot, o->s->now() + 10);
+      },
+      &owner);
+  EXPECT_FALSE(s.owned_pending(owner.slot));
+  s.at(20, [&] { order.push_back('a'); });
+  s.arm_owned(owner.slot, 20);
+  EXPECT_TRUE(s.owned_pending(owner.slot));
+  s.at(20, [&] { order.push_back('b'); });
+  s.at(30, [&] { order.push_back('c'); });  // before the owned one armed again for 30
+  s.run_until(35);
+  s.at(40, [&] { order.push_back('d'); });  // after the one armed for 40 (at 30)
+  s.run_until(100);
+  EXPECT_EQ(order, (std::vector<char>{'a', 'o', 'b', 'c', 'o', 'o', 'd'}));
+  EXPECT_FALSE(s.owned_pending(owner.slot));
+  EXPECT_THROW(s.arm_owned(owner.slot, 50), std::invalid_argument);
+  EXPECT_FALSE(s.owned_pending(owner.slot));
+
+  s.arm_owned(owner.slot, 200);
+  EXPECT_EQ(s.pending_count(), 1u);
+  s.cancel_owned(owner.slot);
+  EXPECT_EQ(s.pending_count(), 0u);
+  s.run_until(300);
+  EXPECT_EQ(order.size(), 7u);
+
+  s.arm_owned(owner.slot, 400);
+  s.disown(owner.slot);  // cancelled, and its slot free again: the next at() takes it
+  EXPECT_EQ(s.pending_count(), 0u);
+  const auto reused = s.at(500, [&] { order.push_back('e'); });
+  EXPECT_EQ(reused.value & 0xFFFF'FFFFu, owner.slot + 1u);
+  s.run_until(1000);
+  EXPECT_EQ(order.back(), 'e');
+  EXPECT_EQ(order.size(), 8u);
+}
+
+// The twin of the above over many random steps: the same workload once with an owned slot
+// and once with at() for the owner's event (armed from outside, again from its action,
+// cancelled), among other events: the same events run at the same times in the same order.
+void run_owned_twin(std::uint32_t seed) {
+  struct Run {
+    std::vector<std::pair<Time, int>> seen;
+  };
+  auto run = [seed](bool owned) {
+    Scheduler s;
+    Run out;
+    std::uint32_t random = seed;
+    auto next_random = [&random](std::uint32_t range) {
+      random = random * 1103515245u + 12345u;
+      return (random >> 8) % range;
+    };
+    struct Owner {
+      Scheduler* s;
+      Run* out;
+      std::uint32_t* random;
+      bool owned;
+      Scheduler::OwnedSlot slot = 0;
+      Scheduler::EventId id{};
+      bool armed = false;
+      int label = 1000;
+      void arm(Time when) {
+        if (owned) {
+          s->arm_owned(slot, when);
+        } else {
+          id = s->at(when, &Owner::fire, this);
+        }
+        armed = true;
+      }
+      void cancel() {
+        if (owned) {
+          s->cancel_owned(slot);
+        } else {
+          s->cancel(id);
+        }
+        armed = false;
+      }
+      static void fire(void* self) {
+        auto* o = static_cast<Owner*>(self);
+        o->armed = false;
+        o->out->seen.emplace_back(o->s->now(), o->label++);
+        *o->random = *o->random * 1103515245u + 12345u;
+        if ((*o->random >> 8) % 2 == 0) o->arm(o->s->now() + ((*o->random >> 12) % 4) * 10);
+      }
+    } owner{&s, &out, &random, owned};
+    if (owned) owner.slot = s.own(&Owner::fire, &owner);
+    int label = 0;
+    for (int round = 0; round < 200; ++round) {
+      for (std::uint32_t i = next_random(5); i > 0; --i) {
+        const Time when = s.now() + static_cast<Time>(next_random(8)) * 10;
+        const int mine = label++;
+        s.at(when, [&s, &out, mine] { out.seen.emplace_back(s.now(), mine); });
+      }
+      const std::uint32_t what = next_random(4);
+      if (what == 0 && !owner.armed) owner.arm(s.now() + static_cast<Time>(next_random(8)) * 10);
+      if (what == 1 && owner.armed) owner.cancel();
+      s.run_until(s.now() + static_cast<Time>(next_random(4)) * 10);
+    }
+    s.run_until(s.now() + 1000);
+    return out.seen;
+  };
+  const auto with_at = run(false);
+  const auto with_owned = run(true);
+  EXPECT_EQ(with_owned, with_at) << "seed " << seed;
+}
+
+TEST(Scheduler, AnOwnedSlotRunsAsAtWouldThroughRandomSteps) {
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_twin(seed * 7919u);
+}
+
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
   EXPECT_EQ(period_of_hz(16'000'000), 62'500);  // 16 Mbit/s bit: 62.5 ns
   EXPECT_EQ(period_of_hz(64'000'000), 15'625);  // 64 MHz MCLK: 15.625 ns

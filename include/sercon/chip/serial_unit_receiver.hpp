@@ -401,7 +401,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
-  Report report_{};                 // the planned report: read only while report_event_ is pending
+  Report report_{};                 // the planned report: read only while report_armed_
   // The entry whose report's handler runs: prune() keeps it (and so its bits, which the
   // frame handed to the handler lives in) until the handler returns.
   static constexpr std::uint64_t kNoSerial = UINT64_MAX;
@@ -413,7 +413,16 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     Firing& operator=(const Firing&) = delete;
     SerialReceiver& receiver;
   };
-  sim::Scheduler::EventId report_event_{};
+  // The report event: one owned scheduler slot per kind of report (fire_report<kind>), the
+  // one of report_.telegram armed while report_armed_.
+  sim::Scheduler::OwnedSlot start_report_event_;
+  sim::Scheduler::OwnedSlot telegram_report_event_;
+  bool report_armed_ = false;
+  void cancel_report() {
+    if (!report_armed_) return;
+    scheduler_.cancel_owned(report_.telegram ? telegram_report_event_ : start_report_event_);
+    report_armed_ = false;
+  }
   sim::Scheduler::EventId monitor_event_{};
   // Forwards put off because the chain of announcements was too deep (a ring where every
   // node repeats: a telegram would circle it forever within one call).

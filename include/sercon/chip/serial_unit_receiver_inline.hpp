@@ -88,7 +88,7 @@ inline void SerialReceiver::work_out(Entry& e, std::size_t first) {
 // No report of e's is to come, nor is one planned or being fired: once a later entry is in
 // force, e can go.
 inline bool SerialReceiver::done_with(Entry& e, sim::Time now) const {
-  if ((e.serial == report_.serial && report_event_.value != 0) || e.serial == firing_) return false;
+  if ((e.serial == report_.serial && report_armed_) || e.serial == firing_) return false;
   // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
   // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
   if (!e.frames.empty()) {

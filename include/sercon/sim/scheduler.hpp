@@ -49,6 +49,31 @@ class Scheduler {
     return at(now_ + delay, action, context);
   }
 
+  // An event slot its owner keeps for its life, for an event armed again and again (a
+  // receiver's report): arming it takes no slot from the free list and makes no EventId,
+  // and running or cancelling it gives nothing back. Armed, it is queued as at() queues an
+  // event (after those already due at its time), so the order is the same. Its action
+  // may arm it again (it is no longer pending while it runs).
+  using OwnedSlot = std::uint32_t;
+  OwnedSlot own(Action action, void* context);
+  // Queues the owned event at `when`; it must not be pending. Throws std::invalid_argument
+  // if `when` is in the past.
+  void arm_owned(OwnedSlot owned, Time when) {
+    if (when < now_) [[unlikely]]
+      refuse_past("Scheduler::arm_owned", when);
+    Slot& slot = slots_[owned];
+    const std::uint32_t generation = ++slot.generation;  // odd: live
+    slot.when = when;
+    insert(when, owned, generation);
+  }
+  // Gives the slot back (cancelled if pending): the owner is done with it.
+  void disown(OwnedSlot owned);
+  bool owned_pending(OwnedSlot owned) const { return slots_[owned].generation % 2 == 1; }
+  // Forgets the owned event if it is pending (its queue entry no longer matches).
+  void cancel_owned(OwnedSlot owned) {
+    if (owned_pending(owned)) ++slots_[owned].generation;
+  }
+
   // Forgets a pending event. Returns false if it already ran or was cancelled.
   // Inline: most calls name an event that already ran.
   bool cancel(EventId id) {
@@ -95,13 +120,16 @@ class Scheduler {
   // cancelled event's entry is dropped when it comes to the front (its generation no
   // longer matches).
   struct Slot {
-    Action action = nullptr;  // null: `callback` holds the event
+    Action action = nullptr;  // null: `callback` holds the event, or an owned slot's
     void* context = nullptr;
     Callback callback;
     Time when = 0;
     std::uint32_t generation = 0;
-    std::uint32_t next_free = 0;  // free list link: index + 1, 0 ends the list
+    // Free list link: index + 1, 0 ends the list. An owned slot (never on the list):
+    // kOwned | its action's index in owned_actions_.
+    std::uint32_t next_free = 0;
   };
+  static constexpr std::uint32_t kOwned = 0x8000'0000u;
   struct Entry {
     Time when;
     std::uint32_t slot;
@@ -224,7 +252,8 @@ class Scheduler {
   std::vector<Entry> scratch_;  // sort_near()'s (swapped with near_'s buffer)
   Time near_limit_ = -1;
   std::vector<Slot> slots_;
-  std::uint32_t free_head_ = 0;  // index + 1 of the first free slot, 0: none
+  std::uint32_t free_head_ = 0;        // index + 1 of the first free slot, 0: none
+  std::vector<Action> owned_actions_;  // of the owned slots (Slot::next_free)
 };
 
 }  // namespace sercon::sim
