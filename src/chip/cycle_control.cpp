@@ -42,15 +42,15 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
       window_(time_base, interrupts,
               [this] {
                 // Slave: keep the cycle going one TSCYC after the missing MST's slot.
-                if (mode_ == Mode::Slave) time_base_.shift_cycle(window_.tscyc());
+                if (mode_ == Mode::Slave) {
+                  time_base_.shift_cycle(
+                      window_.tscyc(), [this](const CycleStart& start) { on_cycle_start(start); });
+                }
               }),
       next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
       mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.react([this](sim::Level level) { on_cyc_clk(level); });
-  time_base_.on_cycle_start(this, [](void* control, const CycleStart& start) {
-    static_cast<CycleControl*>(control)->on_cycle_start(start);
-  });
   time_base_.on_divider_change(
       [this](Edge edge, std::int64_t period) { on_divider_change(edge, period); });
 }
@@ -165,7 +165,8 @@ void CycleControl::mst_detected(sim::Time when) {
 void CycleControl::slave_mst() {
   if (!running_ || mode_ != Mode::Slave) return;
   window_.judge(false);
-  time_base_.start_cycle(CycleKind::Mst);
+  time_base_.start_cycle(CycleKind::Mst,
+                         [this](const CycleStart& start) { on_cycle_start(start); });
   interrupts_.raise(Irq::Cycst);
 }
 
@@ -188,7 +189,7 @@ void CycleControl::cyc_clk_recognised() {
 
 void CycleControl::master_cycle_start() {
   const Edge start = time_base_.mclk().first_at_or_after(scheduler_.now());
-  time_base_.start_cycle(CycleKind::Master);
+  time_base_.start_cycle(CycleKind::Master, [this](const CycleStart& s) { on_cycle_start(s); });
   cycle_ticks_ =
       DividerTicks::started_at(start, time_base_.tick_period(), time_base_.tick_period());
   // A cycle sends one MST: a new cycle start before TCYCSTART has passed drops it.
@@ -228,14 +229,6 @@ bool CycleControl::master_cycle_starts_now() const {
 void CycleControl::send_mst() {
   interrupts_.raise(Irq::Cycst);
   for (std::size_t i = 0; i < send_mst_listeners_.size(); ++i) send_mst_listeners_[i]();
-}
-
-void CycleControl::on_cycle_start(const CycleStart& start) {
-  const bool slave_cycle = mode_ == Mode::Slave && start.kind != CycleKind::Master;
-  const bool synced_master = mode_ == Mode::MasterCycClk && start.kind == CycleKind::Master;
-  // The first cycle-start listener (registered first, in the constructor): `start` is
-  // still the counter and TSCYC now.
-  if (slave_cycle || synced_master) window_.expect_next(start);
 }
 
 void CycleControl::on_divider_change(Edge edge, std::int64_t period) {

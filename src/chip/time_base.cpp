@@ -10,10 +10,7 @@ namespace sercon::chip {
 namespace {
 
 constexpr std::uint8_t kClockDivider = 0x0E;
-constexpr std::uint8_t kTscyc0 = 0x0F;
-constexpr std::uint8_t kTscyc1 = 0x10;
 constexpr std::uint8_t kTcnt = 0x12;
-constexpr std::uint8_t kTcntst = 0x13;
 
 }  // namespace
 
@@ -74,17 +71,8 @@ void TimeBase::release() {
   base_ = 0;
 }
 
-std::uint16_t TimeBase::tscyc() const {
-  const std::uint16_t phase_byte = regmode_.on(regs_) ? phas0_.get(regs_) : phasr_.get(regs_);
-  return regs_.value((phase_byte & 0x07) <= 2 ? kTscyc0 : kTscyc1);
-}
-
-// Events due exactly now belong to the step that has just happened in the old cycle and
-// still run; later ones belonged to the old cycle and are dropped. Earlier ones have run
-// or were cancelled.
-// Inline in the two cycle starts below (GCC kept it a call).
-[[gnu::always_inline]] inline void TimeBase::drop_future_events() {
-  const sim::Time now = scheduler_.now();
+// The other units' cycle-time events (TimeBase::drop_future_events).
+void TimeBase::drop_future_planned(sim::Time now) {
   Planned* kept = planned_.data();
   for (const Planned& planned : planned_) {
     if (planned.when > now) {
@@ -94,43 +82,6 @@ std::uint16_t TimeBase::tscyc() const {
     }
   }
   planned_.erase(planned_.begin() + (kept - planned_.data()), planned_.end());
-  // An owned event due now stays as well (a cancelled or run one's id no longer matches).
-  for (const OwnedEvent* owned : owned_) {
-    if (owned->when_ > now) scheduler_.cancel(sim::Scheduler::EventId{owned->id_});
-  }
-}
-
-// Always inline in the two cycle starts (GCC made it a call once FieldRef reads got cheaper).
-[[gnu::always_inline]] inline void TimeBase::begin(CycleKind kind, std::int64_t count) {
-  const CycleStart start{kind, count, tscyc()};
-  // A range loop (the listeners' vector reloaded after every call cost about 25 a start):
-  // on_cycle_start() refuses to add a listener meanwhile.
-  struct Starting {
-    bool& flag;
-    explicit Starting(bool& f) : flag(f) { flag = true; }
-    ~Starting() { flag = false; }
-  } starting{starting_};
-  for (const CycleStartListener& l : cycle_listeners_) {
-    if (!l.idle) l.listener(l.context, start);
-  }
-}
-
-void TimeBase::start_cycle(CycleKind kind) {
-  if (!running_) return;
-  drop_future_events();
-  const Edge start = mclk_.first_at_or_after(scheduler_.now());
-  ticks_ = DividerTicks::started_at(start, mclkst_.get(regs_), tick_period());
-  base_ = regs_.value(kTcntst);
-  // The first tick is at least one edge after `start`, the first edge at or after now: the
-  // counter holds TCNTST.
-  begin(kind, base_);
-}
-
-void TimeBase::shift_cycle(std::int64_t by) {
-  if (!running_) return;
-  drop_future_events();
-  base_ -= by;
-  begin(CycleKind::Substitute, count());
 }
 
 void TimeBase::prune() {

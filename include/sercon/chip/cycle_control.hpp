@@ -66,7 +66,13 @@ class CycleControl : public ChipUnit {
   void mst_due();
   bool master_cycle_starts_now() const;
   void send_mst();
-  void on_cycle_start(const CycleStart& start);
+  // Ahead of the time base's cycle-start listeners (TimeBase::start_cycle's `first`):
+  // `start` is still the counter and TSCYC now. Inline: a step of every cycle start.
+  void on_cycle_start(const CycleStart& start) {
+    const bool slave_cycle = mode_ == Mode::Slave && start.kind != CycleKind::Master;
+    const bool synced_master = mode_ == Mode::MasterCycClk && start.kind == CycleKind::Master;
+    if (slave_cycle || synced_master) window_.expect_next(start);
+  }
   void on_divider_change(Edge edge, std::int64_t period);
   void cancel_own_events();
   void cancel_all();

@@ -8,6 +8,7 @@
 // as signed 16-bit numbers (a driver's TCNTST - JT is often negative).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 
@@ -30,13 +31,49 @@ class CycleWindow {
   CycleWindow& operator=(const CycleWindow&) = delete;
 
   // A cycle began now (`start`, as the time base announced it: its count and TSCYC are
-  // the counter and the cycle time now): expect the next event one cycle later.
-  void expect_next(const CycleStart& start);
-  void forget();  // back to Unsynced
+  // the counter and the cycle time now): expect the next event one cycle later. TSCYC = 0
+  // means the cycle time is not programmed: nothing is expected, so no window closes empty
+  // and nothing free-wheels. Inline: a step of every slave's cycle start.
+  void expect_next(const CycleStart& start) {
+    forget();
+    tscyc_ = start.tscyc;
+    if (tscyc_ == 0) return;
+    const RegisterFile& regs = time_base_.regs();
+    opens_ = tscyc_ + static_cast<std::int16_t>(regs.field_value(kJtscyc1));
+    closes_ = tscyc_ + static_cast<std::int16_t>(regs.field_value(kJtscyc2));
+    state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
+    // A window programmed to close before the counter's start closes at the first step.
+    time_base_.at_cycle_time(close_event_, std::max(closes_, start.count), &CycleWindow::closes,
+                             this);
+  }
+  void forget() {  // back to Unsynced
+    time_base_.cancel(close_event_.id());
+    close_event_.forget();
+    state_ = State::Unsynced;
+  }
   // An MST (slave) or CYC_CLK (master) arrives now: raises the flags it earns. A close
   // due at this very instant is decided first, so the order of equal-time events does
-  // not matter.
-  void judge(bool master);
+  // not matter. Inline: a step of every slave's cycle start.
+  void judge(bool master) {
+    // Mostly the close is still ahead: its time is looked at before the scheduler is asked.
+    if (close_event_.when() <= time_base_.scheduler().now() &&
+        time_base_.when(close_event_.id()).has_value()) {
+      time_base_.cancel(close_event_.id());
+      close_event_.forget();
+      close();
+    }
+    const std::int64_t position = time_base_.count();
+    switch (state_) {
+      case State::Unsynced:
+        return;
+      case State::Synced:
+        if (position < opens_) interrupts_.raise(Irq::MstEarly);
+        return;
+      case State::Missed:
+        missed_judged(master, position);
+        return;
+    }
+  }
 
   State state() const { return state_; }
   std::int64_t opens() const { return opens_; }    // TSCYC + JTSCYC1, counter value
@@ -44,8 +81,12 @@ class CycleWindow {
   std::uint16_t tscyc() const { return tscyc_; }
 
  private:
+  static constexpr std::uint8_t kJtscyc1 = 0x15;
+  static constexpr std::uint8_t kJtscyc2 = 0x16;
+
   static void closes(void* window);  // the close event (function + context)
   void close();
+  void missed_judged(bool master, std::int64_t position);  // judge() after an empty window
 
   TimeBase& time_base_;
   Interrupts& interrupts_;

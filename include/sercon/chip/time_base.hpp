@@ -41,6 +41,11 @@ struct CycleStart {
 
 class TimeBase : public ChipUnit {
  public:
+  // Registers the time base reads at a cycle start.
+  static constexpr std::uint8_t kTscyc0Register = 0x0F;
+  static constexpr std::uint8_t kTscyc1Register = 0x10;
+  static constexpr std::uint8_t kTcntstRegister = 0x13;
+
   using CycleEvent = std::uint64_t;  // 0 names no event
 
   explicit TimeBase(Chip& chip);
@@ -70,15 +75,37 @@ class TimeBase : public ChipUnit {
   std::uint16_t tcnt() const { return static_cast<std::uint16_t>(count() & 0xFFFF); }
   // TSCYC0 in phases 0..2, TSCYC1 in phases 3..7. The phase is PHAS0 (the byte a master
   // sends) in master mode and PHASR (the byte of the last MST received) in slave mode.
-  std::uint16_t tscyc() const;
+  // Inline: read at every cycle start.
+  std::uint16_t tscyc() const {
+    const std::uint16_t phase_byte = regmode_.on(regs_) ? phas0_.get(regs_) : phasr_.get(regs_);
+    return regs_.field_value((phase_byte & 0x07) <= 2 ? kTscyc0Register : kTscyc1Register);
+  }
 
   // A cycle starts now (called at an MCLK edge): the counter is loaded with TCNTST and
   // its divider restarts from MCLKST. Pending cycle-time events later than now are
-  // dropped, then the cycle-start listeners run.
-  void start_cycle(CycleKind kind);
+  // dropped, then `first(start)` runs (the caller's own reaction: CycleControl's window,
+  // ahead of every listener) and then the cycle-start listeners.
+  // Inline (with `first`): a slave's cycle start is one step with CycleControl's MST.
+  template <class First>
+  [[gnu::always_inline]] void start_cycle(CycleKind kind, First first) {
+    if (!running_) return;
+    drop_future_events();
+    const Edge start = mclk_.first_at_or_after(scheduler_.now());
+    ticks_ = DividerTicks::started_at(start, mclkst_.get(regs_), tick_period());
+    base_ = regs_.field_value(kTcntstRegister);
+    // The first tick is at least one edge after `start`, the first edge at or after now: the
+    // counter holds TCNTST.
+    begin(kind, base_, first);
+  }
   // Substitute cycle (slave free-wheel): the counter moves back by `by` µs without a
   // divider restart, so the µs grid is kept; then as start_cycle.
-  void shift_cycle(std::int64_t by);
+  template <class First>
+  void shift_cycle(std::int64_t by, First first) {
+    if (!running_) return;
+    drop_future_events();
+    base_ -= by;
+    begin(CycleKind::Substitute, count(), first);
+  }
 
   // Calls `callback` when the counter steps from `cycle_time` to cycle_time + 1 in the
   // running cycle. Returns 0 (nothing scheduled) when that step is not ahead. Events are
@@ -200,9 +227,35 @@ class TimeBase : public ChipUnit {
   // planned_ is full: drops the entries of events that ran or were cancelled, and makes
   // room for as many again as are left.
   void prune();
-  void drop_future_events();
+  // Events due exactly now belong to the step that has just happened in the old cycle and
+  // still run; later ones belonged to the old cycle and are dropped. Earlier ones have run
+  // or were cancelled.
+  [[gnu::always_inline]] void drop_future_events() {
+    const sim::Time now = scheduler_.now();
+    if (!planned_.empty()) drop_future_planned(now);
+    // An owned event due now stays as well (a cancelled or run one's id no longer matches).
+    for (const OwnedEvent* owned : owned_) {
+      if (owned->when_ > now) scheduler_.cancel(sim::Scheduler::EventId{owned->id_});
+    }
+  }
+  void drop_future_planned(sim::Time now);
   void cancel_all();
-  void begin(CycleKind kind, std::int64_t count);  // `count`: the counter now
+  // `first(start)`, then the listeners; `count`: the counter now.
+  template <class First>
+  [[gnu::always_inline]] void begin(CycleKind kind, std::int64_t count, First first) {
+    const CycleStart start{kind, count, tscyc()};
+    // A range loop (the listeners' vector reloaded after every call cost about 25 a start):
+    // on_cycle_start() refuses to add a listener meanwhile.
+    struct Starting {
+      bool& flag;
+      explicit Starting(bool& f) : flag(f) { flag = true; }
+      ~Starting() { flag = false; }
+    } starting{starting_};
+    first(start);
+    for (const CycleStartListener& l : cycle_listeners_) {
+      if (!l.idle) l.listener(l.context, start);
+    }
+  }
   void on_register_change(std::uint8_t address);
 
   sim::Scheduler& scheduler_;
