@@ -25,7 +25,7 @@ void TelegramList::stop() {
 [[gnu::flatten]] void TelegramList::start(std::uint16_t list_pointer) {
   const State was = state_;
   stop();
-  items_read_ = 0;
+  items_left_ = ram_.size() / 2u;
   if (was == State::Receive) {
     const ListItem waiting = item_;
     try {
@@ -49,10 +49,8 @@ void TelegramList::fault(const ListFault& f) {
 // Fills `item` in place (a ListItem returned by value was assembled on the stack and
 // reloaded whole: a store-forwarding stall per item).
 inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
-  // Every item takes at least two words, so a walk reading more items than half the RAM
-  // has looped.
-  if (++items_read_ > ram_.size() / 2u) throw_list_fault("list loops (no end marker reached)");
-  item = ListItem{};
+  if (items_left_ == 0) throw_list_fault("list loops (no end marker reached)");
+  --items_left_;
   item.address = address;
   // Headers and end markers inside the RAM: looked at first, then their words (word 0 and
   // TRT, TLEN, PT or TEND, read in order by the general path below) marked as one run.
@@ -62,6 +60,8 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
     item.kind = telegram::kind_of(item.word0);
     item.time = words[telegram::kTimeWord];
     if (item.kind == Kind::EndMarker) {
+      item.length = 0;
+      item.next = 0;
       ram_.touch_run(address, telegram::kEndMarkerWords);
       return;
     }
@@ -71,8 +71,9 @@ inline void TelegramList::read_item(std::uint16_t address, ListItem& item) {
       ram_.touch_run(address, telegram::kTransmitHeaderWords);
       return;
     }
-    item.time = 0;
   }
+  item = ListItem{};
+  item.address = address;
   item.word0 = ram_.read(address);
   item.kind = telegram::kind_of(item.word0);
   switch (item.kind) {

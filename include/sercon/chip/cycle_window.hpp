@@ -35,7 +35,10 @@ class CycleWindow {
   // means the cycle time is not programmed: nothing is expected, so no window closes empty
   // and nothing free-wheels. Inline: a step of every slave's cycle start.
   void expect_next(const CycleStart& start) {
-    forget();
+    // No close is pending: the time base dropped one later than now, judge() decided one due
+    // now, and a close that ran started this cycle (shift_cycle).
+    close_event_.forget();
+    state_ = State::Unsynced;
     tscyc_ = start.tscyc;
     if (tscyc_ == 0) return;
     const RegisterFile& regs = time_base_.regs();

@@ -138,11 +138,16 @@ class TelegramList {
   void fire_transmit();
   void close_window();
   void fire_end();
+  // Mostly neither is armed (a receive header without TCHK waits, or the end marker ran).
   void cancel_event() {
-    if (event_.id() != 0) time_base_.cancel(event_.id());
-    event_.forget();
-    scheduler_.cancel(window_judge_);
-    window_judge_ = {};
+    if (event_.id() != 0) {
+      time_base_.cancel(event_.id());
+      event_.forget();
+    }
+    if (window_judge_.value != 0) {
+      scheduler_.cancel(window_judge_);
+      window_judge_ = {};
+    }
   }
   void fault(const ListFault& fault);
   // Every change of state_ goes through these, so wait_ follows it.
@@ -174,8 +179,10 @@ class TelegramList {
   ListItem item_;
   TimeBase::OwnedEvent event_;              // transmit or end marker due
   sim::Scheduler::EventId window_judge_{};  // a TCHK header's window is over
-  HeaderWait wait_;               // state_ == Receive, and the header's window and address
-  std::uint32_t items_read_ = 0;  // since the cycle start: more than RAM / 2 is a loop
+  HeaderWait wait_;  // state_ == Receive, and the header's window and address
+  // Items the walk may still read in this cycle: every item takes at least two words, so a
+  // walk reading more items than half the RAM has looped.
+  std::uint32_t items_left_ = 0;
 };
 
 }  // namespace sercon::chip
