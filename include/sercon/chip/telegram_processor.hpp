@@ -78,14 +78,16 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   void on_cycle_start(const CycleStart& start);
   void on_send_mst();
   void on_telegram_start(sim::Time start, std::uint8_t address);
-  void on_telegram(const ReceivedTelegram& telegram);
+  [[gnu::always_inline]] inline void on_telegram(const ReceivedTelegram& telegram);
   void on_mst(const wire::DecodedFrame& frame, sim::Time recognised);
-  // offer() and finish_receive() are inline (defined in the .cpp, each called once there):
-  // a telegram's start and its detection are one call each from the serial unit.
+  // on_telegram(), offer() and finish_receive() are inline (defined in the .cpp, each called
+  // once there): a telegram's start and its detection are one call each from the serial
+  // unit (finish_receive() a call of its own cost about 14 a telegram).
   inline void offer(sim::Time start, std::uint8_t address);
   void withdraw_mst();
   // `item`: the header receiving_ held (a copy: stop_receiving() clears it).
-  inline void finish_receive(const ListItem& item, const wire::DecodedFrame& frame);
+  [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
+                                                    const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
   // Scheduler actions (function + context: no std::function per telegram).
   static void transmission_ended(void* processor);
