@@ -177,6 +177,20 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
 void SerialReceiver::absorb_waiting() {
   const sim::Time now = scheduler_.now();
   prune_lazy(now);  // a burst over by now would only be pruned
+  // Mostly (an own telegram absorbs the burst that came before it) one burst waits, and it
+  // has reached the next receiver: it is in force at every stage of the node and at the far
+  // end, so each timeline would hold just it once pruned. Each is set to that at once
+  // (settle), without the general booking's prunes and appends.
+  if (lazy_.size() == 1) {
+    const LazyBurst& lazy = lazy_.front();
+    SerialRepeater& repeater = unit_.repeater();
+    if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
+        repeater.settles(lazy.leaves) && all_done_with(now)) {
+      take_in_front(lazy);
+      repeater.settle(lazy.leaves, lazy.reaching.bit_period, lazy.reaching.bits);
+      return lazy_.drop_all();
+    }
+  }
   // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.
@@ -188,28 +202,32 @@ void SerialReceiver::absorb_waiting() {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.reaching;
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
-    // Mostly (an own telegram absorbs the burst that came before it) the burst is in force
-    // by now and every entry before it over: prune() would then leave the burst alone, so
-    // it takes the front's place at once (its entry as append() would make it, written in
-    // place), the others dropped from the back, none moved.
+    // In force by now, every entry before it over: it takes the front's place.
     if (lazy.arrived <= now && all_done_with(now)) {
-      while (holds_more_than(1)) timeline_.pop_back();
-      Entry& e = timeline_.front();
-      RxdSegment& s = e.segment;
-      s.is_burst = true;
-      s.condition = LineCondition::Idle;
-      s.since = lazy.arrived;
-      s.period = b.bit_period;
-      s.bits = b.bits;
-      e.cut = lazy.ends;  // s.burst_end()
-      e.serial = next_serial_++;
-      take(e, true);
+      take_in_front(lazy);
     } else {
       prune();
       take(append(RxdSegment{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits}));
     }
     unit_.repeater().absorb(lazy.leaves, b.bit_period, b.bits);
   }
+}
+
+// A lazy burst in force by now, every entry before it done with: prune() would leave it
+// alone once appended, so it takes the front's place at once (its entry as append() would
+// make it, written in place), the others dropped from the back, none moved.
+inline void SerialReceiver::take_in_front(const LazyBurst& lazy) {
+  while (holds_more_than(1)) timeline_.pop_back();
+  Entry& e = timeline_.front();
+  RxdSegment& s = e.segment;
+  s.is_burst = true;
+  s.condition = LineCondition::Idle;
+  s.since = lazy.arrived;
+  s.period = lazy.reaching.bit_period;
+  s.bits = lazy.reaching.bits;
+  e.cut = lazy.ends;  // s.burst_end()
+  e.serial = next_serial_++;
+  take(e, true);
 }
 
 // Whether the lazy bursts must be absorbed for a plan: one of them has a report the telegram

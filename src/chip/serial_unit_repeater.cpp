@@ -71,6 +71,12 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
     ~LetGo() { forwarded.drop_all(); }
   } let_go{forwarded_};
   while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.drop_front();
+  // Mostly (an own telegram where no lazy burst waits, the first slave's) the last one has
+  // reached TxD's listener: the line and TxD's are set to it alone (settle).
+  if (forwarded_.size() == 1 && settles(forwarded_.front().leaves)) {
+    const Forwarded& f = forwarded_.front();
+    return settle(f.leaves, f.reaching.bit_period, f.reaching.bits);  // drops forwarded_
+  }
   for (std::size_t i = 0; i < forwarded_.size(); ++i) {
     const Forwarded& f = forwarded_[i];
     book(f.leaves, f.reaching.bit_period, f.reaching.bits);

@@ -75,6 +75,10 @@ class TxdOutputs final : public PassedBursts {
   // A burst passed through before: into the line as line_burst() would, no listener told
   // (the listener books it when it asks, book_all).
   inline void absorb(sim::Time start, sim::Time period, const SharedBits& bits);
+  // absorb() of a burst that has reached the lone follower by now (so every burst before it
+  // has too): the line is just it once pruned, set so at once. The repeater's settle().
+  inline void settle(sim::Time start, sim::Time period, const SharedBits& bits);
+  sim::Time last_since() const { return line_.back().since; }
   // PassedBursts: the bursts the lone follower took by pass_through (lazy hops, and the
   // bursts line_burst() hands it) and has not booked, booked there in order. Every burst
   // leaving TxD reaches that listener this way when it takes it, so a plain fibre books

@@ -131,6 +131,40 @@ inline void TxdOutputs::absorb(sim::Time start, sim::Time period, const SharedBi
   ++unbooked_;  // it took the burst by pass_through: booked when it asks (book_all)
 }
 
+// A line (repeater, TxD) set to the burst from `since` alone: what a prune would leave once
+// the burst, appended, is in force. The front slot is written over (no append).
+template <class Line>
+inline void settle_burst(Line& line, sim::Time since, sim::Time period, const SharedBits& bits) {
+  while (line.size() > 1) pop_front_segment(line);
+  RxdSegment& s = line.front();  // the line is never empty (it holds what is in force)
+  s.is_burst = true;
+  s.condition = LineCondition::Idle;
+  s.since = since;
+  s.period = period;
+  s.bits = bits;
+}
+
+inline void TxdOutputs::settle(sim::Time start, sim::Time period, const SharedBits& bits) {
+  settle_burst(line_, start, period, bits);
+  unbooked_ = 1;  // it took the burst by pass_through; those before went unbooked (prune())
+}
+
+inline bool SerialRepeater::settles(sim::Time leaves) const {
+  // The burst has reached TxD's listener (so the forwarded bursts are over, absorb()), no
+  // own telegram is left (prune()), and it comes after what the line and TxD's hold.
+  const TxdOutputs& txd = unit_.outputs();
+  const sim::Time now = scheduler_.now();
+  return leaves + txd.follower_delay() <= now && own_end_ <= now && !background_.empty() &&
+         background_.back().since < leaves && txd.last_since() < leaves;
+}
+
+inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, const SharedBits& bits) {
+  forwarded_.drop_all();
+  own_.drop_all();
+  settle_burst(background_, leaves, period, bits);
+  unit_.outputs().settle(leaves, period, bits);
+}
+
 inline bool TxdOutputs::would_pass(sim::Time leaves) const {
   // Nothing announced at or after it to drop, and no change between dark and light (the
   // pins' plan stays as it is): what line_burst() would do is only to keep it.

@@ -265,6 +265,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[gnu::noinline]] bool ask_start(sim::Time start, std::uint8_t address) const;
   [[gnu::noinline]] bool ask_telegram(sim::Time start, const wire::DecodedFrame& frame) const;
   void absorb_waiting();
+  struct LazyBurst;
+  inline void take_in_front(const LazyBurst& lazy);  // absorb_waiting()'s usual entry
   inline void prune_lazy(sim::Time now);
   inline void drop_lazy_over(sim::Time now);
   // For the const readers of the timeline: the receiver itself is never const.

@@ -42,6 +42,11 @@ class SerialRepeater {
   inline bool would_pass(sim::Time leaves) const;
   // The burst as it leaves (its start `leaves`; no LineBurst built for it).
   inline void absorb(sim::Time leaves, sim::Time period, const SharedBits& bits);
+  // absorb() of a burst that has reached TxD's listener by now, after everything here:
+  // whether the line and TxD's would then hold just it once pruned (settles), and so
+  // set them (settle). Inline (serial_unit_pass_through.hpp).
+  inline bool settles(sim::Time leaves) const;
+  inline void settle(sim::Time leaves, sim::Time period, const SharedBits& bits);
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
   inline void absorb_passed();  // serial_unit_pass_through.hpp
