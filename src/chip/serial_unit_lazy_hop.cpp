@@ -186,7 +186,7 @@ void SerialReceiver::absorb_waiting() {
     SerialRepeater& repeater = unit_.repeater();
     if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
         repeater.settles(lazy.leaves) && all_done_with(now)) {
-      take_in_front(lazy);
+      take_in_front(lazy, lazy.reports_over < now);
       repeater.settle(lazy.leaves, lazy.reaching.bit_period, lazy.reaching.bits);
       return lazy_.drop_all();
     }
@@ -204,7 +204,7 @@ void SerialReceiver::absorb_waiting() {
     expect_absorbed_in_order("RxD", timeline_.back().segment.since, lazy.arrived);
     // In force by now, every entry before it over: it takes the front's place.
     if (lazy.arrived <= now && all_done_with(now)) {
-      take_in_front(lazy);
+      take_in_front(lazy, lazy.reports_over < now);
     } else {
       prune();
       take(append(RxdSegment{true, LineCondition::Idle, lazy.arrived, b.bit_period, b.bits}));
@@ -215,8 +215,11 @@ void SerialReceiver::absorb_waiting() {
 
 // A lazy burst in force by now, every entry before it done with: prune() would leave it
 // alone once appended, so it takes the front's place at once (its entry as append() would
-// make it, written in place), the others dropped from the back, none moved.
-inline void SerialReceiver::take_in_front(const LazyBurst& lazy) {
+// make it, written in place), the others dropped from the back, none moved. `over`: it has
+// ended and its reports are past (the usual absorb, an own telegram's), so nothing can ask
+// for its frames any more (RECACT is asked from now on, reports past are never planned):
+// it is kept without them, as a burst not taken, which the prunes and plans pass at once.
+inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
   while (holds_more_than(1)) timeline_.pop_back();
   Entry& e = timeline_.front();
   RxdSegment& s = e.segment;
@@ -227,6 +230,11 @@ inline void SerialReceiver::take_in_front(const LazyBurst& lazy) {
   s.bits = lazy.reaching.bits;
   e.cut = lazy.ends;  // s.burst_end()
   e.serial = next_serial_++;
+  if (over) {
+    e.decode = nullptr;
+    e.frames.clear();
+    return;
+  }
   take(e, true);
 }
 

@@ -199,7 +199,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     sim::Time cut = 0;  // bursts: where a later change cuts it (burst end when none)
     std::uint64_t serial = 0;
     const BurstDecode* decode = nullptr;  // of segment.bits; null: not taken (no burst, other
-                                          // rate, reset)
+                                          // rate, reset, a lazy burst absorbed over)
     FrameStates frames;
   };
   struct Report {
@@ -266,7 +266,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[gnu::noinline]] bool ask_telegram(sim::Time start, const wire::DecodedFrame& frame) const;
   void absorb_waiting();
   struct LazyBurst;
-  inline void take_in_front(const LazyBurst& lazy);  // absorb_waiting()'s usual entry
+  inline void take_in_front(const LazyBurst& lazy, bool over);  // absorb_waiting()'s usual entry
   inline void prune_lazy(sim::Time now);
   inline void drop_lazy_over(sim::Time now);
   // For the const readers of the timeline: the receiver itself is never const.
