@@ -442,6 +442,14 @@ void SerialReceiver::fire_report() {
     }
     if (nothing_after_detection(r)) {  // what plan_reports() would find, without the walk
       refresh_interest();
+      // Its frames are over for good once no change can cut the burst any more: nothing
+      // asks for them again (RECACT is asked from now on, past reports are never planned),
+      // so the entry stays as a burst not taken, which prunes and plans pass at once.
+      Entry& last = timeline_.back();
+      if (last.cut <= scheduler_.now()) {
+        last.decode = nullptr;
+        last.frames.clear();
+      }
       return;
     }
   } else {
