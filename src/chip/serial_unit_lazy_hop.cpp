@@ -157,40 +157,9 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   return true;
 }
 
-inline void SerialReceiver::prune_lazy(sim::Time now) {
-  if (lazy_.size() > 1 && lazy_[1].reaches() <= now) drop_lazy_over(now);  // mostly not
-}
-
-// Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
-// RxD too) and at the next receiver (the fibre would drop this one from its history when it
-// books them), and this one's reports would be past. The full path would have
-// dropped them.
-// Called when the second one has reached the next receiver (prune_lazy asks that first).
-inline void SerialReceiver::drop_lazy_over(sim::Time now) {
-  do {
-    const LazyBurst& front = lazy_.front();
-    if (front.reports_over >= now) return;
-    lazy_.drop_front();
-  } while (lazy_.size() > 1 && lazy_[1].reaches() <= now);
-}
-
 void SerialReceiver::absorb_waiting() {
   const sim::Time now = scheduler_.now();
-  prune_lazy(now);  // a burst over by now would only be pruned
-  // Mostly (an own telegram absorbs the burst that came before it) one burst waits, and it
-  // has reached the next receiver: it is in force at every stage of the node and at the far
-  // end, so each timeline would hold just it once pruned. Each is set to that at once
-  // (settle), without the general booking's prunes and appends.
-  if (lazy_.size() == 1) {
-    const LazyBurst& lazy = lazy_.front();
-    SerialRepeater& repeater = unit_.repeater();
-    if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
-        repeater.settles(lazy.leaves) && all_done_with(now)) {
-      take_in_front(lazy, lazy.reports_over < now);
-      repeater.settle(lazy.leaves, lazy.reaching.bit_period, lazy.reaching.bits);
-      return lazy_.drop_all();
-    }
-  }
+  if (settle_lazy(now)) return;  // the usual case (serial_unit_pass_through.hpp)
   // Nothing here calls out of the node, so lazy_ stays as it is while it is walked. A
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.
@@ -211,31 +180,6 @@ void SerialReceiver::absorb_waiting() {
     }
     unit_.repeater().absorb(lazy.leaves, b.bit_period, b.bits);
   }
-}
-
-// A lazy burst in force by now, every entry before it done with: prune() would leave it
-// alone once appended, so it takes the front's place at once (its entry as append() would
-// make it, written in place), the others dropped from the back, none moved. `over`: it has
-// ended and its reports are past (the usual absorb, an own telegram's), so nothing can ask
-// for its frames any more (RECACT is asked from now on, reports past are never planned):
-// it is kept without them, as a burst not taken, which the prunes and plans pass at once.
-inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
-  while (holds_more_than(1)) timeline_.pop_back();
-  Entry& e = timeline_.front();
-  RxdSegment& s = e.segment;
-  s.is_burst = true;
-  s.condition = LineCondition::Idle;
-  s.since = lazy.arrived;
-  s.period = lazy.reaching.bit_period;
-  s.bits = lazy.reaching.bits;
-  e.cut = lazy.ends;  // s.burst_end()
-  e.serial = next_serial_++;
-  if (over) {
-    e.decode = nullptr;
-    e.frames.clear();
-    return;
-  }
-  take(e, true);
 }
 
 // Whether the lazy bursts must be absorbed for a plan: one of them has a report the telegram

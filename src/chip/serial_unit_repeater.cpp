@@ -83,34 +83,6 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
   }
 }
 
-void SerialRepeater::own(const LineBurst& burst) {
-  absorb_passed();
-  prune();  // first: the telegram itself is not over (it begins at or after now)
-  const sim::Time end = burst.end();
-  LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
-  kept.start = burst.start;
-  kept.bit_period = burst.bit_period;
-  kept.bits = burst.bits;
-  own_end_ = end;
-  // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
-  // without its walk. The telegram; then, when nothing of the background begins after its
-  // start, the background segment in force where it ends (joined half-way unless it begins
-  // there); else emit_from() from its end, as emit_from(burst.start) goes on.
-  if (own_.size() == 1 && !background_.empty()) {
-    unit_.outputs().line_burst(burst);
-    if (own_.size() == 1 && background_.back().since <= burst.start) {
-      // Joined half-way (it begins before the telegram's end): emit_background's last case,
-      // here without the call (mostly the idle fill the line is in anyway, a no-op).
-      const RxdSegment& s = background_.back();
-      if (s.since != end)
-        return unit_.outputs().line_condition(end, s.condition_at_join(), s.period);
-      return emit_background(end, background_.size() - 1, false);
-    }
-    return emit_from(end);
-  }
-  emit_from(burst.start);
-}
-
 void SerialRepeater::refresh() {
   absorb_passed();
   const bool on = unit_.fields().repon.on(unit_.chip().regs());

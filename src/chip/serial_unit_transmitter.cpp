@@ -7,6 +7,7 @@
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
 #include "sercon/chip/serial_unit.hpp"
+#include "sercon/chip/serial_unit_pass_through.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
 #include "sercon/wire/encoder.hpp"
 

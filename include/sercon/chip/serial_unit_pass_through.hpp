@@ -2,13 +2,16 @@
 // (docs/serial-and-ring.md, "Lazy hops") for SerialReceiver::try_lazy_hop and their
 // absorbing later, the repeater's forward time, and the repeater's input and TxD's line_burst for a
 // burst the node reads (SerialReceiver::pass_to_repeater). Asked at every hop (~32 000 a cycle with
-// 254 slaves), where a call per stage costs as much as its checks.
+// 254 slaves), where a call per stage costs as much as its checks. And an own telegram's way
+// through the repeater (SerialRepeater::own, with its usual absorb: settle_lazy), inline in
+// SerialTransmitter::send.
 #pragma once
 
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_outputs.hpp"
 #include "sercon/chip/serial_unit_receiver.hpp"
+#include "sercon/chip/serial_unit_receiver_inline.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"
 
 namespace sercon::chip {
@@ -98,6 +101,39 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
   return true;
 }
 
+// Inline: at every own telegram (SerialTransmitter::send), a call less.
+inline void SerialRepeater::own(const LineBurst& burst) {
+  // absorb_passed(), its usual case inline: the lazy burst settles, which leaves nothing
+  // forwarded and nothing for prune() to drop (settle()).
+  if (!unit_.receiver().absorb_lazy_for_own()) {
+    absorb_forwarded();
+    prune();  // first: the telegram itself is not over (it begins at or after now)
+  }
+  const sim::Time end = burst.end();
+  LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
+  kept.start = burst.start;
+  kept.bit_period = burst.bit_period;
+  kept.bits = burst.bits;
+  own_end_ = end;
+  // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
+  // without its walk. The telegram; then, when nothing of the background begins after its
+  // start, the background segment in force where it ends (joined half-way unless it begins
+  // there); else emit_from() from its end, as emit_from(burst.start) goes on.
+  if (own_.size() == 1 && !background_.empty()) {
+    unit_.outputs().line_burst(burst);
+    if (own_.size() == 1 && background_.back().since <= burst.start) {
+      // Joined half-way (it begins before the telegram's end): emit_background's last case,
+      // here without the call (mostly the idle fill the line is in anyway, a no-op).
+      const RxdSegment& s = background_.back();
+      if (s.since != end)
+        return unit_.outputs().line_condition(end, s.condition_at_join(), s.period);
+      return emit_background(end, background_.size() - 1, false);
+    }
+    return emit_from(end);
+  }
+  emit_from(burst.start);
+}
+
 inline void SerialRepeater::absorb_passed() {
   unit_.receiver().absorb_lazy();  // its repeater stage absorbs forwarded_ first
   absorb_forwarded();
@@ -163,6 +199,77 @@ inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, const Sha
   own_.drop_all();
   settle_burst(background_, leaves, period, bits);
   unit_.outputs().settle(leaves, period, bits);
+}
+
+// --- the receiver's lazy bursts absorbed (SerialReceiver::absorb_waiting, and inline for an
+// own telegram: SerialRepeater::own) ---------------------------------------------------------
+
+inline void SerialReceiver::prune_lazy(sim::Time now) {
+  if (lazy_.size() > 1 && lazy_[1].reaches() <= now) drop_lazy_over(now);  // mostly not
+}
+
+// Lazy bursts over at every stage of this node: the next one is in force at TxD (so at
+// RxD too) and at the next receiver (the fibre would drop this one from its history when it
+// books them), and this one's reports would be past. The full path would have
+// dropped them.
+// Called when the second one has reached the next receiver (prune_lazy asks that first).
+inline void SerialReceiver::drop_lazy_over(sim::Time now) {
+  do {
+    const LazyBurst& front = lazy_.front();
+    if (front.reports_over >= now) return;
+    lazy_.drop_front();
+  } while (lazy_.size() > 1 && lazy_[1].reaches() <= now);
+}
+
+// A lazy burst in force by now, every entry before it done with: prune() would leave it
+// alone once appended, so it takes the front's place at once (its entry as append() would
+// make it, written in place), the others dropped from the back, none moved. `over`: it has
+// ended and its reports are past (the usual absorb, an own telegram's), so nothing can ask
+// for its frames any more (RECACT is asked from now on, reports past are never planned):
+// it is kept without them, as a burst not taken, which the prunes and plans pass at once.
+inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
+  while (holds_more_than(1)) timeline_.pop_back();
+  Entry& e = timeline_.front();
+  RxdSegment& s = e.segment;
+  s.is_burst = true;
+  s.condition = LineCondition::Idle;
+  s.since = lazy.arrived;
+  s.period = lazy.reaching.bit_period;
+  s.bits = lazy.reaching.bits;
+  e.cut = lazy.ends;  // s.burst_end()
+  e.serial = next_serial_++;
+  if (over) {
+    e.decode = nullptr;
+    e.frames.clear();
+    return;
+  }
+  take(e, true);
+}
+
+// Mostly (an own telegram absorbs the burst that came before it) one burst waits, and it has
+// reached the next receiver: it is in force at every stage of the node and at the far end,
+// so each timeline would hold just it once pruned. Each is set to that at once (settle),
+// without the general booking's prunes and appends. False: absorb_waiting() books them.
+inline bool SerialReceiver::settle_lazy(sim::Time now) {
+  prune_lazy(now);  // a burst over by now would only be pruned
+  if (lazy_.size() != 1) return false;
+  const LazyBurst& lazy = lazy_.front();
+  SerialRepeater& repeater = unit_.repeater();
+  if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
+      repeater.settles(lazy.leaves) && all_done_with(now)) {
+    take_in_front(lazy, lazy.reports_over < now);
+    repeater.settle(lazy.leaves, lazy.reaching.bit_period, lazy.reaching.bits);
+    lazy_.drop_all();
+    return true;
+  }
+  return false;
+}
+
+inline bool SerialReceiver::absorb_lazy_for_own() {
+  if (lazy_.empty()) return false;
+  if (settle_lazy(scheduler_.now())) return true;
+  absorb_waiting();
+  return false;
 }
 
 inline bool TxdOutputs::would_pass(sim::Time leaves) const {

@@ -70,6 +70,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     if (!lazy_.empty()) absorb_waiting();  // inline: asked before every change, mostly none
   }
   std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
+  // absorb_lazy() for an own telegram (SerialRepeater::own), its usual case inline
+  // (serial_unit_pass_through.hpp). True: the lazy burst settled (SerialRepeater::settle).
+  [[gnu::always_inline]] inline bool absorb_lazy_for_own();
   std::size_t lazy_bursts_waiting() const { return lazy_.size(); }  // not yet absorbed
 
   // What RxD carries now.
@@ -266,7 +269,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[gnu::noinline]] bool ask_telegram(sim::Time start, const wire::DecodedFrame& frame) const;
   void absorb_waiting();
   struct LazyBurst;
-  inline void take_in_front(const LazyBurst& lazy, bool over);  // absorb_waiting()'s usual entry
+  // absorb_waiting()'s usual case and its entry, inline (serial_unit_pass_through.hpp): always,
+  // as they are at every own telegram (absorb_lazy_for_own()).
+  [[gnu::always_inline]] inline bool settle_lazy(sim::Time now);
+  [[gnu::always_inline]] inline void take_in_front(const LazyBurst& lazy, bool over);
   inline void prune_lazy(sim::Time now);
   inline void drop_lazy_over(sim::Time now);
   // For the const readers of the timeline: the receiver itself is never const.

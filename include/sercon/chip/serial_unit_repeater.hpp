@@ -29,7 +29,7 @@ class SerialRepeater {
   // RxD announced `segment` (segment.since >= now).
   inline void input(const RxdSegment& segment);  // serial_unit_pass_through.hpp
   // The transmitter announced an own telegram (burst.start >= now).
-  void own(const LineBurst& burst);
+  [[gnu::always_inline]] inline void own(const LineBurst& burst);  // serial_unit_pass_through.hpp
   // REPON or the bit rate changed.
   void refresh();
 
@@ -46,7 +46,8 @@ class SerialRepeater {
   // whether the line and TxD's would then hold just it once pruned (settles), and so
   // set them (settle). Inline (serial_unit_pass_through.hpp).
   inline bool settles(sim::Time leaves) const;
-  inline void settle(sim::Time leaves, sim::Time period, const SharedBits& bits);
+  [[gnu::always_inline]] inline void settle(sim::Time leaves, sim::Time period,
+                                            const SharedBits& bits);
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
   inline void absorb_passed();  // serial_unit_pass_through.hpp
