@@ -68,17 +68,15 @@ const BurstDecode& decode_burst_prefix(const SharedBits& bits, std::size_t cut_b
 // the burst's end leaves with no bits: no frame); the bits between are whole bytes,
 // destuffed back to address, data and FCS. Four bytes or more with the right FCS: ok.
 // Fewer (no data): TooShort, every byte after the address as data, both FCS fields 0.
-void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::uint8_t address,
-                 std::span<const std::uint8_t> data, std::uint16_t fcs) {
-  BurstDecodes& d = bits.decodes();
-  if (d.whole || where.start_bit != 0 || where.end_bit != bits->size()) return;
-  // A released object's decode, filled again (shared_bits.hpp, "Recycled"): every field
-  // is set, the storage of its vectors kept.
-  std::unique_ptr<BurstDecode> result =
-      d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
+namespace {
+
+// Every field of `r` set to the one telegram's decode (seed_decode's rules above), its
+// vectors' storage kept.
+void fill_seed(BurstDecode& r, const wire::EncodedFrame& where, std::uint8_t address,
+               std::span<const std::uint8_t> data, std::uint16_t fcs) {
   ++decodes;
-  result->frames.resize(1);
-  wire::DecodedFrame& f = result->frames.front();
+  r.frames.resize(1);
+  wire::DecodedFrame& f = r.frames.front();
   f.start_bit = where.start_bit;
   f.end_bit = where.end_bit;
   f.address = address;
@@ -93,9 +91,33 @@ void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::u
     f.fcs_computed = 0;
     f.error = wire::FrameError::TooShort;
   }
-  result->address_end.assign(1, where.start_bit + address_end_bit(address));
-  result->to_255 = address == kAddress255;
+  r.address_end.assign(1, where.start_bit + address_end_bit(address));
+  r.to_255 = address == kAddress255;
+}
+
+}  // namespace
+
+void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::uint8_t address,
+                 std::span<const std::uint8_t> data, std::uint16_t fcs) {
+  BurstDecodes& d = bits.decodes();
+  if (d.whole || where.start_bit != 0 || where.end_bit != bits->size()) return;
+  // A released object's decode, filled again (shared_bits.hpp, "Recycled"): every field
+  // is set, the storage of its vectors kept.
+  std::unique_ptr<BurstDecode> result =
+      d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
+  fill_seed(*result, where, address, data, fcs);
   d.whole = std::move(result);
+}
+
+SharedBits encode_seeded(bool& level, std::uint8_t address, std::span<const std::uint8_t> data) {
+  return rewrite_shared_bits([&](wire::LineBits& bits, BurstDecodes& d) {
+    const wire::TelegramCoding c = wire::encode_telegram(bits, level, address, data);
+    level = c.level_after;
+    if (!d.prefixes.empty()) d.prefixes.clear();
+    if (!d.whole) d.whole = d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
+    // Every decode is made non-const (run_decoder, seed_decode), so it may be filled again.
+    fill_seed(const_cast<BurstDecode&>(*d.whole), c.frame, address, data, c.fcs);
+  });
 }
 
 std::size_t burst_decode_count() { return decodes; }

@@ -51,13 +51,9 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   const std::uint64_t fill_bits =
       static_cast<std::uint64_t>(begin_at - free_at_) / static_cast<std::uint64_t>(period);
   if (((fill_bits + 7) / 8) % 2 != 0) level_ = !level_;
-  wire::TelegramCoding coding;
-  SharedBits bits = write_shared_bits(
-      [&](wire::LineBits& out) { coding = wire::encode_telegram(out, level_, address, data); });
-  level_ = coding.level_after;
-  // The receivers' decode, known from what was encoded (docs/serial-and-ring.md, "Receiver").
-  seed_decode(bits, coding.frame, address, data, coding.fcs);
-  const LineBurst burst{begin_at, period, std::move(bits)};
+  // With the receivers' decode, known from what was encoded (docs/serial-and-ring.md,
+  // "Receiver").
+  const LineBurst burst{begin_at, period, encode_seeded(level_, address, data)};
   // They end in order: the last one over (the usual case) means all are.
   if (free_at_ <= now) {
     sent_.drop_all();

@@ -2,7 +2,7 @@
 // object belongs to the thread that runs its simulation.
 #include "sercon/chip/shared_bits.hpp"
 
-#include <vector>
+#include <memory>
 
 namespace sercon::chip {
 namespace {
@@ -13,45 +13,64 @@ constexpr std::size_t kMaxPooled = 1024;
 // A buffer longer than this (not a telegram: a test's long stream) is not kept.
 constexpr std::size_t kMaxKeptBits = 64 * 1024;
 
-// Set when this thread's pool is gone (thread exit): what is released after that is freed.
-thread_local bool pool_gone = false;
-
 }  // namespace
 
+// Plain data, so that the hot paths find it without a thread-local initialisation check.
 struct SharedBits::Pool {
-  Pool() { free.reserve(kMaxPooled); }
-  ~Pool() {
-    pool_gone = true;
-    for (Node* n : free) delete n;
-  }
-  Pool(const Pool&) = delete;
-  Pool& operator=(const Pool&) = delete;
-  std::vector<Node*> free;  // bits empty, count 1, no decodes (a spare one kept)
+  Node* free[kMaxPooled];  // [0, size): count 1, bits and decodes as last left
+  std::size_t size;
+  bool gone;  // set at thread exit: what is released after that is freed
 };
 
-thread_local SharedBits::Pool SharedBits::pool_;
+// Frees the pool's objects at thread exit. Made (and so registered) by the first object
+// the thread allocates: a pool holds only objects of its own thread.
+struct SharedBits::PoolCleanup {
+  bool armed = false;
+  ~PoolCleanup() {
+    pool_.gone = true;
+    for (std::size_t i = 0; i < pool_.size; ++i) delete pool_.free[i];
+    pool_.size = 0;
+  }
+};
 
-SharedBits::Node* SharedBits::fresh_node() {
-  if (!kRecycleBits || pool_gone || pool_.free.empty()) return new Node();
-  Node* n = pool_.free.back();
-  pool_.free.pop_back();
-  return n;
+thread_local constinit SharedBits::Pool SharedBits::pool_{};
+
+thread_local SharedBits::PoolCleanup SharedBits::pool_cleanup_;
+
+SharedBits::Node* SharedBits::recycled_node() {
+  if (!kRecycleBits || pool_.gone || pool_.size == 0) return allocate();
+  return pool_.free[--pool_.size];
 }
 
-void SharedBits::release(Node* n) noexcept {
-  if (!kRecycleBits || pool_gone || pool_.free.size() >= kMaxPooled ||
-      n->bits.size() > kMaxKeptBits) {
-    delete n;
-    return;
-  }
-  n->bits.clear();
-  n->count = 1;
+SharedBits::Node* SharedBits::allocate() {
+  pool_cleanup_.armed = true;
+  return new Node();
+}
+
+SharedBits::Node* SharedBits::fresh_node() {
+  Node* n = recycled_node();
+  if (!n->bits.empty()) n->bits.clear();
   BurstDecodes& d = n->decodes;
   // Made non-const (line_decode_memo.cpp), so it may be filled again.
   if (d.whole && !d.spare) d.spare.reset(const_cast<BurstDecode*>(d.whole.release()));
   d.whole.reset();
   d.prefixes.clear();
-  pool_.free.push_back(n);  // within the capacity reserved: no allocation
+  return n;
 }
+
+// Kept as it is: its next taker writes it over (rewrite_shared_bits) or clears it
+// (fresh_node), so a telegram's object is not cleared only to be filled again.
+void SharedBits::release(Node* n) noexcept {
+  if (kRecycleBits && !pool_.gone && pool_.size < kMaxPooled && n->bits.size() <= kMaxKeptBits)
+      [[likely]] {
+    n->count = 1;
+    pool_.free[pool_.size++] = n;
+    return;
+  }
+  destroy(n);
+}
+
+// Out of line, so that release() saves no registers for it.
+void SharedBits::destroy(Node* n) noexcept { delete n; }
 
 }  // namespace sercon::chip

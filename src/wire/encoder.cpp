@@ -278,7 +278,9 @@ template <class Full>
 
 TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint8_t address,
                                std::span<const std::uint8_t> data) {
-  if (!out.empty()) out.clear();  // a recycled buffer is empty already
+  // Every byte is written again (whole words from bit 0), so the old bits are not cleared
+  // first, only what is left of them after.
+  const std::size_t old_bytes = out.drop_for_overwrite();
   // One allocation for all of it (flags and at most 10 bits per stuffed byte, and a word of
   // room past them), every word stored at a byte boundary into it (append_reserved).
   out.reserve(16 + 10 * (data.size() + 3) + 64);
@@ -298,6 +300,7 @@ TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint
     out.append_reserved(levels, d.count);  // after whole words: at a byte boundary
     level = ((levels >> (64 - d.count)) & 1u) != 0;
   }
+  out.clear_past_bits(old_bytes);
   return {{0, out.size()}, level, fcs};
 }
 

@@ -49,10 +49,7 @@ void LineBits::ensure_capacity(std::size_t bit_count) {
   if (buf_.size() < need) buf_.resize(std::max(need, buf_.size() * 2), 0);
 }
 
-void LineBits::reserve(std::size_t bit_count) {
-  const std::size_t need = (bit_count + 7) / 8 + 8;
-  if (buf_.size() < need) buf_.resize(need, 0);
-}
+void LineBits::grow(std::size_t bit_count) { buf_.resize((bit_count + 7) / 8 + 8, 0); }
 
 void LineBits::append(std::uint64_t msb_first, unsigned count) {
   if (count == 0) return;

@@ -260,5 +260,28 @@ TEST(Encoder, EveryCodingPathMatchesTheBitByBitRules) {
   }
 }
 
+// encode_telegram writes the buffer's bytes over rather than clearing them first
+// (LineBits::drop_for_overwrite): after a longer telegram, the bytes past the new bits must
+// be 0 again, as LineBits keeps them (appends or-in, word reads see past the last bit).
+TEST(Encoder, EncodeTelegramOverALongerOneLeavesNothingPastItsBits) {
+  std::mt19937 rng(0xB17E);
+  LineBits reused;
+  for (int n = 0; n < 2000; ++n) {
+    std::vector<std::uint8_t> data(rng() % (n % 2 == 0 ? 200 : 8));
+    for (std::uint8_t& b : data) b = static_cast<std::uint8_t>(rng() % 3 == 0 ? 0xFF : rng());
+    const auto address = static_cast<std::uint8_t>(rng());
+    const bool level = (n & 2) != 0;
+    encode_telegram(reused, level, address, data);
+    LineBits fresh;
+    encode_telegram(fresh, level, address, data);
+    ASSERT_EQ(reused, fresh) << "telegram " << n;
+    LineBits grown = reused;  // the whole buffer, bytes past the bits too
+    grown.append_run(false, 2500);
+    fresh.append_run(false, 2500);
+    ASSERT_EQ(grown, fresh) << "telegram " << n;
+    ASSERT_EQ(reused.word_at(reused.size() - 1) << 1, 0u) << "telegram " << n;
+  }
+}
+
 }  // namespace
 }  // namespace sercon::wire

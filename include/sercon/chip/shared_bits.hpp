@@ -103,16 +103,24 @@ class SharedBits {
     BurstDecodes decodes;
   };
   struct Pool;
+  struct PoolCleanup;
   static thread_local Pool pool_;
+  static thread_local PoolCleanup pool_cleanup_;
   explicit SharedBits(Node* node) : node_(node) {}
   static Node* fresh_node();  // counted from one, bits empty, no decodes (shared_bits.cpp)
+  // Counted from one, bits and decodes as the last holder left them (or empty).
+  static Node* recycled_node();
+  [[gnu::noinline]] static Node* allocate();  // a new object, on a pool's first use
   static void release(Node* node) noexcept;
+  [[gnu::noinline, gnu::cold]] static void destroy(Node* node) noexcept;
   static void drop(Node* node) noexcept {
     if (node && --node->count == 0) release(node);
   }
   friend SharedBits share_bits(wire::LineBits bits);
   template <class Write>
   friend SharedBits write_shared_bits(Write&& write);
+  template <class Rewrite>
+  friend SharedBits rewrite_shared_bits(Rewrite&& rewrite);
 
   Node* node_ = nullptr;
 };
@@ -130,6 +138,17 @@ template <class Write>
 SharedBits write_shared_bits(Write&& write) {
   SharedBits shared(SharedBits::fresh_node());
   write(shared.node_->bits);
+  return shared;
+}
+
+// The same, written over a recycled object as its last holder left it: `rewrite` gets its
+// bits and decodes, either empty or as they were, and must set every bit and field again
+// (the transmitter's telegrams, line_decode_memo.hpp: encode_seeded). Cheaper than
+// clearing them for the writer to fill again.
+template <class Rewrite>
+SharedBits rewrite_shared_bits(Rewrite&& rewrite) {
+  SharedBits shared(SharedBits::recycled_node());
+  rewrite(shared.node_->bits, shared.node_->decodes);
   return shared;
 }
 

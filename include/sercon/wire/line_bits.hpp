@@ -36,11 +36,29 @@ class LineBits {
   // more since. The encoder's word loop: no checks.
   void append_reserved(std::uint64_t msb_first, unsigned count) {
     const std::uint64_t be = __builtin_bswap64(msb_first);
-    std::memcpy(buf_.data() + size_ / 8, &be, 8);  // the bytes past size() were all 0
+    std::memcpy(buf_.data() + size_ / 8, &be, 8);  // whole bytes: written over, not or-ed
     size_ += count;
   }
-  void reserve(std::size_t bit_count);
+  // Room for bit_count bits (and the word past them); inline: a telegram's buffer, used
+  // before, has it already.
+  void reserve(std::size_t bit_count) {
+    if (buf_.size() < (bit_count + 7) / 8 + 8) grow(bit_count);
+  }
   void clear();
+  // For a writer that writes every byte again from bit 0 with append_reserved (the
+  // encoder): drops the bits but leaves their bytes to be written over, and returns how
+  // many there were, for clear_past_bits() when it is done. Cheaper than clear() first.
+  std::size_t drop_for_overwrite() {
+    const std::size_t bytes = (size_ + 7) / 8;
+    size_ = 0;
+    return bytes;
+  }
+  // After such a writer: clears what is left of the `old_bytes` bytes past the new bits,
+  // so the bytes past the last bit are 0 again.
+  void clear_past_bits(std::size_t old_bytes) {
+    const std::size_t bytes = (size_ + 7) / 8;
+    if (old_bytes > bytes) std::memset(buf_.data() + bytes, 0, old_bytes - bytes);
+  }
 
   // 64 bits starting at bit `first` (any position), MSB = bit `first`; bits past size()
   // read as 0. This is how the codec reads the line a word at a time.
@@ -54,6 +72,7 @@ class LineBits {
 
  private:
   void ensure_capacity(std::size_t bit_count);
+  void grow(std::size_t bit_count);  // reserve()'s allocation
 
   // Empty until the first bit (an empty line allocates nothing: the chip makes and drops
   // many), then at least ceil(size_/8) + 8 bytes so a word can be read or written at any
