@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <span>
 #include <utility>
@@ -70,18 +71,55 @@ const BurstDecode& decode_burst_prefix(const SharedBits& bits, std::size_t cut_b
 // Fewer (no data): TooShort, every byte after the address as data, both FCS fields 0.
 namespace {
 
+// `to` made a copy of `from`, in the storage it has (a recycled decode, shared_bits.hpp): no
+// library call for a telegram of up to 16 bytes unless `to` must grow.
+void copy_bytes(std::vector<std::uint8_t>& to, std::span<const std::uint8_t> from) {
+  const std::size_t n = from.size();
+  if (n > to.size()) [[unlikely]] {
+    to.assign(from.begin(), from.end());
+    return;
+  }
+  to.resize(n);  // no longer: nothing to fill
+  std::uint8_t* const t = to.data();
+  const std::uint8_t* const f = from.data();
+  // Head and tail moves, overlapping for sizes between the powers of two.
+  if (n >= 8 && n <= 16) {
+    std::uint64_t head;
+    std::uint64_t tail;
+    std::memcpy(&head, f, 8);
+    std::memcpy(&tail, f + n - 8, 8);
+    std::memcpy(t, &head, 8);
+    std::memcpy(t + n - 8, &tail, 8);
+  } else if (n >= 4 && n < 8) {
+    std::uint32_t head;
+    std::uint32_t tail;
+    std::memcpy(&head, f, 4);
+    std::memcpy(&tail, f + n - 4, 4);
+    std::memcpy(t, &head, 4);
+    std::memcpy(t + n - 4, &tail, 4);
+  } else if (n > 0 && n < 4) {
+    t[0] = f[0];
+    t[n / 2] = f[n / 2];
+    t[n - 1] = f[n - 1];
+  } else if (n > 16) {
+    std::memcpy(t, f, n);
+  }
+}
+
 // Every field of `r` set to the one telegram's decode (seed_decode's rules above), its
 // vectors' storage kept.
-void fill_seed(BurstDecode& r, const wire::EncodedFrame& where, std::uint8_t address,
-               std::span<const std::uint8_t> data, std::uint16_t fcs) {
+[[gnu::always_inline]] inline void fill_seed(BurstDecode& r, const wire::EncodedFrame& where,
+                                             std::uint8_t address,
+                                             std::span<const std::uint8_t> data,
+                                             std::uint16_t fcs) {
   ++decodes;
-  r.frames.resize(1);
+  if (r.frames.size() != 1) r.frames.resize(1);
   wire::DecodedFrame& f = r.frames.front();
   f.start_bit = where.start_bit;
   f.end_bit = where.end_bit;
   f.address = address;
-  if (data.size() + 3 >= kMinFrameBytes) {
-    f.data.assign(data.begin(), data.end());
+  if (data.size() + 3 >= kMinFrameBytes) [[likely]] {
+    copy_bytes(f.data, data);
     f.fcs_received = fcs;
     f.fcs_computed = fcs;
     f.error = wire::FrameError::None;
@@ -91,7 +129,12 @@ void fill_seed(BurstDecode& r, const wire::EncodedFrame& where, std::uint8_t add
     f.fcs_computed = 0;
     f.error = wire::FrameError::TooShort;
   }
-  r.address_end.assign(1, where.start_bit + address_end_bit(address));
+  const std::size_t address_end = where.start_bit + address_end_bit(address);
+  if (r.address_end.size() == 1) {
+    r.address_end.front() = address_end;
+  } else {
+    r.address_end.assign(1, address_end);
+  }
   r.to_255 = address == kAddress255;
 }
 
