@@ -143,11 +143,22 @@ template <class Full>
   d.count = total - 64;
 }
 
+// Up to this many bytes are stuffed a byte at a time (a telegram's FCS alone, mostly).
+constexpr unsigned kTableBytes = 3;
+
 // `bytes` (1..8 bytes, the first lowest) stuffed at once when no five 1s come together in
 // them, with the run carried in (most data has no such run); else byte by byte.
 template <class Full>
 [[gnu::always_inline]] inline void stuff_word(Decoded& d, std::uint64_t bytes, unsigned n,
                                               const Full& full) {
+  if (n <= kTableBytes) {  // a lookup a byte is cheaper than the word's tests
+    for (unsigned i = 0; i < n; ++i, bytes >>= 8) {
+      const std::uint32_t e = kStuff[d.run * 256 + (bytes & 0xFFu)];
+      put(d, e & 0x3FFu, (e >> 10) & 0xFu, full);
+      d.run = e >> 14;
+    }
+    return;
+  }
   const unsigned bits = 8 * n;
   const std::uint64_t top = reverse_bits(bytes);  // the rest 0: no run reaches past them
   const std::uint64_t runs = top & top << 1 & top << 2 & top << 3 & top << 4;
@@ -278,9 +289,9 @@ template <class Full>
 
 TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint8_t address,
                                std::span<const std::uint8_t> data) {
-  // Every byte is written again (whole words from bit 0), so the old bits are not cleared
-  // first, only what is left of them after.
-  const std::size_t old_bytes = out.drop_for_overwrite();
+  // Every byte of flags, address, data and FCS is written again (whole words from bit 0):
+  // of the old bits, only bytes past those are cleared.
+  out.drop_for_overwrite(data.size() + 5);
   // One allocation for all of it (flags and at most 10 bits per stuffed byte, and a word of
   // room past them), every word stored at a byte boundary into it (append_reserved).
   out.reserve(16 + 10 * (data.size() + 3) + 64);
@@ -300,7 +311,6 @@ TelegramCoding encode_telegram(LineBits& out, bool initial_level_high, std::uint
     out.append_reserved(levels, d.count);  // after whole words: at a byte boundary
     level = ((levels >> (64 - d.count)) & 1u) != 0;
   }
-  out.clear_past_bits(old_bytes);
   return {{0, out.size()}, level, fcs};
 }
 

@@ -283,5 +283,32 @@ TEST(Encoder, EncodeTelegramOverALongerOneLeavesNothingPastItsBits) {
   }
 }
 
+// Every byte value after every run of 1s carried into it (0..8 ended by a 0 before it, and
+// longer after a byte of 1s), at every position in the encoder's 8-byte words, with 1s or 0s
+// after it: the bit-by-bit rules' bits, on the word path and the byte path (encoder.cpp).
+TEST(Encoder, EveryByteAfterEveryRunMatchesTheBitByBitRules) {
+  LineBits reused;
+  for (unsigned run = 0; run <= 8; ++run) {
+    // The last `run` bits on the line (the high ones) 1s, the bit before them 0.
+    const auto before = static_cast<std::uint8_t>((0xFFu << (8 - run)) & 0xFFu);
+    for (unsigned value = 0; value < 256; ++value) {
+      for (std::size_t at = 0; at < 9; ++at) {
+        for (const std::uint8_t after : {std::uint8_t{0x00}, std::uint8_t{0xFF}}) {
+          std::vector<std::uint8_t> data(at, 0x00);
+          if (run > 5) data.push_back(0xFF);
+          data.push_back(before);
+          data.push_back(static_cast<std::uint8_t>(value));
+          data.push_back(after);
+          data.push_back(after);
+          const bool level = (value & 1u) != 0;
+          encode_telegram(reused, level, 0x00, data);
+          ASSERT_EQ(levels_string(reused), levels_string(reference_telegram(0x00, data, level)))
+              << "run " << run << " value " << value << " at " << at;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sercon::wire

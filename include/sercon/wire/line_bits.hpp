@@ -45,19 +45,14 @@ class LineBits {
     if (buf_.size() < (bit_count + 7) / 8 + 8) grow(bit_count);
   }
   void clear();
-  // For a writer that writes every byte again from bit 0 with append_reserved (the
-  // encoder): drops the bits but leaves their bytes to be written over, and returns how
-  // many there were, for clear_past_bits() when it is done. Cheaper than clear() first.
-  std::size_t drop_for_overwrite() {
+  // For a writer that writes at least `min_bytes` whole bytes again from bit 0 with
+  // append_reserved (the encoder): drops the bits, clearing only their bytes past those
+  // (cheaper than clear() first). The writer's last word leaves 0s past its bits.
+  void drop_for_overwrite(std::size_t min_bytes) {
     const std::size_t bytes = (size_ + 7) / 8;
+    // 8 at a time: the buffer has 8 bytes past the old bits (its end may be cleared twice).
+    for (std::size_t i = min_bytes; i < bytes; i += 8) std::memset(buf_.data() + i, 0, 8);
     size_ = 0;
-    return bytes;
-  }
-  // After such a writer: clears what is left of the `old_bytes` bytes past the new bits,
-  // so the bytes past the last bit are 0 again.
-  void clear_past_bits(std::size_t old_bytes) {
-    const std::size_t bytes = (size_ + 7) / 8;
-    if (old_bytes > bytes) std::memset(buf_.data() + bytes, 0, old_bytes - bytes);
   }
 
   // 64 bits starting at bit `first` (any position), MSB = bit `first`; bits past size()
