@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "sercon/chip/line_length.hpp"
+#include "sercon/wire/encoder_words.hpp"
 
 namespace sercon::chip {
 namespace {
@@ -154,7 +155,8 @@ void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::u
 
 SharedBits encode_seeded(bool& level, std::uint8_t address, std::span<const std::uint8_t> data) {
   return rewrite_shared_bits([&](wire::LineBits& bits, BurstDecodes& d) {
-    const wire::TelegramCoding c = wire::encode_telegram(bits, level, address, data);
+    const wire::TelegramCoding c =
+        wire::encoder_detail::encode_telegram_inline(bits, level, address, data);
     level = c.level_after;
     if (!d.prefixes.empty()) d.prefixes.clear();
     if (!d.whole) d.whole = d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
