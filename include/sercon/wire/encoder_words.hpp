@@ -168,15 +168,41 @@ template <class Full>
     d.run = static_cast<unsigned>(std::countr_one(top >> (64 - bits)));
     return;
   }
-  for (unsigned i = 0; i < n; ++i, bytes >>= 8) {
-    const std::uint32_t e = kStuff[d.run * 256 + (bytes & 0xFFu)];
-    put(d, e & 0x3FFu, (e >> 10) & 0xFu, full);
-    d.run = e >> 14;
+  // Five 1s (the run carried in counted): a 0 goes in after them, found one at a time from
+  // the first bit; the bits between go as they are.
+  std::uint64_t rest = top;  // bits still to go, first highest, the rest 0
+  unsigned left = bits;
+  unsigned run = d.run;
+  for (;;) {
+    unsigned take;  // bits up to the fifth 1
+    if (run + static_cast<unsigned>(std::countl_one(rest)) >= 5) {
+      take = 5 - run;
+    } else {
+      const std::uint64_t five = rest & rest << 1 & rest << 2 & rest << 3 & rest << 4;
+      if (five == 0) break;
+      take = static_cast<unsigned>(std::countl_zero(five)) + 5;  // a run of five starts there
+    }
+    put_top(d, rest & top_mask(take), take, full);
+    if (++d.count == 64) {  // the stuffed 0: the bit is 0 already
+      full(d.bits);
+      d.bits = 0;
+      d.count = 0;
+    }
+    rest = take < 64 ? rest << take : 0;
+    left -= take;
+    run = 0;
   }
+  if (left == 0) {
+    d.run = run;
+    return;
+  }
+  put_top(d, rest, left, full);
+  const auto ones = static_cast<unsigned>(std::countr_one(rest >> (64 - left)));
+  d.run = ones == left ? run + ones : ones;
 }
 
-// Address, data and FCS (low byte first) stuffed into `d`, up to 8 bytes at a time (each
-// full word to `full`); the FCS is worked out on the same words and returned.
+// Address, data and FCS (low byte first) stuffed into `d` (each full word to `full`); the
+// FCS is worked out first, on words of the address and data, and returned.
 template <class Full>
 [[gnu::always_inline]] inline std::uint16_t stuff_telegram(Decoded& d, std::uint8_t address,
                                                            std::span<const std::uint8_t> data,
@@ -184,28 +210,25 @@ template <class Full>
   const std::uint8_t* p = data.data();
   std::size_t n = data.size();
   Fcs16 fcs;
-  std::size_t k = n < 7 ? n : 7;  // with the address
-  std::uint64_t w = address | load_le(p, k) << 8;
-  ++k;
-  p += k - 1;
-  n -= k - 1;
-  while (n > 0) {  // w is 8 bytes, and more follow
-    fcs.update_word(w, 8);
-    stuff_word(d, w, 8u, full);
-    k = n < 8 ? n : 8;
-    w = k == 8 ? load_le8(p) : load_le(p, k);
+  const std::size_t first = n < 7 ? n : 7;  // with the address
+  fcs.update_word(address | load_le(p, first) << 8, static_cast<unsigned>(first + 1));
+  for (std::size_t i = first; i < n; i += 8) {
+    const std::size_t k = n - i < 8 ? n - i : 8;
+    fcs.update_word(k == 8 ? load_le8(p + i) : load_le(p + i, k), static_cast<unsigned>(k));
+  }
+  const std::uint16_t v = fcs.value();
+  // The address by the table (255, an MST's or MDT's, has five 1s, which would send a word
+  // byte by byte), then the data 8 bytes at a time, the last 6 or fewer with the FCS.
+  const std::uint32_t e = kStuff[d.run * 256 + address];
+  put(d, e & 0x3FFu, (e >> 10) & 0xFu, full);
+  d.run = e >> 14;
+  while (n > 6) {
+    const std::size_t k = n < 8 ? n : 8;
+    stuff_word(d, k == 8 ? load_le8(p) : load_le(p, k), static_cast<unsigned>(k), full);
     p += k;
     n -= k;
   }
-  // w: the last k (1..8) bytes, then the FCS, in one word when it fits.
-  fcs.update_word(w, static_cast<unsigned>(k));
-  const std::uint16_t v = fcs.value();
-  if (k <= 6) {
-    stuff_word(d, w | std::uint64_t{v} << (8 * k), static_cast<unsigned>(k + 2), full);
-  } else {
-    stuff_word(d, w, static_cast<unsigned>(k), full);
-    stuff_word(d, std::uint64_t{v}, 2u, full);
-  }
+  stuff_word(d, load_le(p, n) | std::uint64_t{v} << (8 * n), static_cast<unsigned>(n + 2), full);
   return v;
 }
 
