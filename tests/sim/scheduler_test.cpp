@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -367,6 +368,94 @@ void run_owned_twin(std::uint32_t seed) {
 
 TEST(Scheduler, AnOwnedSlotRunsAsAtWouldThroughRandomSteps) {
   for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_twin(seed * 7919u);
+}
+
+// arm_owned_now() against at(now()): the owned event armed for now from other events, from
+// its own action and between runs (when now may lie past the queue's near part), cancelled
+// at times, among events near and far (past the scheduler's horizon): the same events run
+// at the same times in the same order.
+void run_owned_now_twin(std::uint32_t seed) {
+  auto run = [seed](bool owned) {
+    Scheduler s;
+    std::vector<std::pair<Time, int>> seen;
+    std::uint32_t random = seed;
+    auto next_random = [&random](std::uint32_t range) {
+      random = random * 1103515245u + 12345u;
+      return (random >> 8) % range;
+    };
+    struct Owner {
+      Scheduler* s;
+      std::vector<std::pair<Time, int>>* seen;
+      std::uint32_t* random;
+      bool owned;
+      Scheduler::OwnedSlot slot = 0;
+      Scheduler::EventId id{};
+      bool armed = false;
+      int label = 100000;
+      void arm_now() {
+        if (armed) return;
+        if (owned) {
+          s->arm_owned_now(slot);
+        } else {
+          id = s->at(s->now(), &Owner::fire, this);
+        }
+        armed = true;
+      }
+      void cancel() {
+        if (owned) {
+          s->cancel_owned(slot);
+        } else {
+          s->cancel(id);
+        }
+        armed = false;
+      }
+      static void fire(void* self) {
+        auto* o = static_cast<Owner*>(self);
+        o->armed = false;
+        o->seen->emplace_back(o->s->now(), o->label++);
+        *o->random = *o->random * 1103515245u + 12345u;
+        if ((*o->random >> 8) % 3 == 0) o->arm_now();  // again, right after itself
+      }
+    } owner{&s, &seen, &random, owned};
+    if (owned) owner.slot = s.own(&Owner::fire, &owner);
+    int label = 0;
+    // Some events arm the owner for now or cancel it when they run.
+    std::function<void(int, std::uint32_t)> event = [&](int mine, std::uint32_t what) {
+      seen.emplace_back(s.now(), mine);
+      if (what == 0) owner.arm_now();
+      if (what == 1 && owner.armed) owner.cancel();
+      if (what == 2) {  // schedules another for now or soon, which may arm the owner
+        const int next = label++;
+        const std::uint32_t next_what = next_random(4);
+        s.at(s.now() + static_cast<Time>(next_random(3)) * 10,
+             [&event, next, next_what] { event(next, next_what); });
+      }
+    };
+    for (int round = 0; round < 300; ++round) {
+      for (std::uint32_t i = next_random(5); i > 0; --i) {
+        // Mostly near, sometimes past the horizon (a far entry).
+        const Time delay = next_random(8) == 0
+                               ? static_cast<Time>(next_random(3) + 1) * 100 * kMicrosecond
+                               : static_cast<Time>(next_random(8)) * 10;
+        const int mine = label++;
+        const std::uint32_t what = next_random(5);
+        s.at(s.now() + delay, [&event, mine, what] { event(mine, what); });
+      }
+      if (next_random(6) == 0) owner.arm_now();
+      const Time step =
+          next_random(10) == 0 ? 150 * kMicrosecond : static_cast<Time>(next_random(4)) * 10;
+      s.run_until(s.now() + step);
+    }
+    s.run_until(s.now() + kMillisecond);
+    return seen;
+  };
+  const auto with_at = run(false);
+  const auto with_owned = run(true);
+  EXPECT_EQ(with_owned, with_at) << "seed " << seed;
+}
+
+TEST(Scheduler, AnOwnedSlotArmedForNowRunsAsAtWouldThroughRandomSteps) {
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_now_twin(seed * 104729u);
 }
 
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {

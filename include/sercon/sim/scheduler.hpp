@@ -66,6 +66,22 @@ class Scheduler {
     slot.when = when;
     insert(when, owned, generation);
   }
+  // arm_owned(owned, now()): the owned event runs right after the events already due now
+  // (the one running, then those queued for now before it), as at(now(), ...) would. Inline
+  // (a slave's MST recognised at its load edge): mostly the queue's front is later than now,
+  // and the entry goes just before it without a search.
+  void arm_owned_now(OwnedSlot owned) {
+    Slot& slot = slots_[owned];
+    const std::uint32_t generation = ++slot.generation;  // odd: live
+    slot.when = now_;
+    SortedRun& run = near_;
+    if (run.head > 0 && now_ <= near_limit_ &&
+        (run.head == run.tail || run.buffer[run.head].when > now_)) {
+      run.buffer[--run.head] = Entry{now_, owned, generation};
+      return;
+    }
+    insert(now_, owned, generation);
+  }
   // Gives the slot back (cancelled if pending): the owner is done with it.
   void disown(OwnedSlot owned);
   bool owned_pending(OwnedSlot owned) const { return slots_[owned].generation % 2 == 1; }
