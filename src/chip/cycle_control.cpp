@@ -48,7 +48,8 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
                 }
               }),
       next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
-      mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }) {
+      mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }),
+      mst_event_(scheduler_.own(&CycleControl::slave_mst_action, this)) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.react([this](sim::Level level) { on_cyc_clk(level); });
   time_base_.on_divider_change(
@@ -57,11 +58,15 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
 
 // Only the scheduler is touched here: the time base may be gone already (units are
 // destroyed in any order) and cancels the window's event itself.
-CycleControl::~CycleControl() { cancel_own_events(); }
+CycleControl::~CycleControl() {
+  cancel_own_events();
+  scheduler_.disown(mst_event_);
+}
 
 void CycleControl::cancel_own_events() {
   next_cycle_.cancel();
   mst_send_.cancel();
+  scheduler_.cancel_owned(mst_event_);
   for (const Recognition& r : recognitions_) scheduler_.cancel(r.event);
   recognitions_.clear();
 }
@@ -159,6 +164,11 @@ void CycleControl::mst_detected(sim::Time when) {
                                 std::to_string(scheduler_.now()) + " ps)");
   }
   if (!running_) return;
+  // Mostly the MST is heard of at its load edge (TelegramProcessor::on_mst): now.
+  if (!scheduler_.owned_pending(mst_event_)) {
+    if (load == scheduler_.now()) return scheduler_.arm_owned_now(mst_event_);
+    return scheduler_.arm_owned(mst_event_, load);
+  }
   recognise_at(load, &CycleControl::slave_mst_action, false);
 }
 

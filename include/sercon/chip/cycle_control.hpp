@@ -96,6 +96,9 @@ class CycleControl : public ChipUnit {
     bool cyc_clk;  // a CYC_CLK edge (a master's cycle start), not a slave's MST
   };
   std::vector<Recognition> recognitions_;  // MSTs / CYC_CLK edges in the synchroniser
+  // A slave's MST in the synchroniser: one owned slot (an event a cycle, no EventId to keep);
+  // an MST while it is pending takes recognitions_.
+  sim::Scheduler::OwnedSlot mst_event_;
   std::vector<std::function<void()>> send_mst_listeners_;
 };
 
