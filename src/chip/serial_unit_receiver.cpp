@@ -467,15 +467,20 @@ void SerialReceiver::fire_report() {
 // After the detection of a burst's only frame, mostly the last burst announced: no report of
 // an entry before is still to come, nor the frame's start report, so a plan would find
 // nothing (a walk of the entries before, all past, says so more cheaply than a plan).
-inline bool SerialReceiver::nothing_after_detection(const Report& fired) const {
+// The walk drops those entries as it goes, as prune() would now: the fired entry is in
+// force, and one with no report to come, none planned (report_armed_) and none firing (the
+// handler has returned) is done with. The next read's prune and an own telegram's settle
+// then find the fired entry alone.
+inline bool SerialReceiver::nothing_after_detection(const Report& fired) {
   if (!lazy_.empty() || report_armed_ || fired.frame != 0) return false;
   const Entry& last = timeline_.back();
   if (last.serial != fired.serial || !last.decode || last.frames.size() != 1) return false;
   const sim::Time now = scheduler_.now();
   const FrameState& st = last.frames[0];
   if (!st.end_done || (!st.start_done && !start_report_past(last, st, now))) return false;
-  for (const Entry* e = timeline_.data(); e != &last; ++e) {
-    if (e->decode && !all_past(*e, now)) return false;
+  while (&timeline_.front() != &last) {
+    if (!all_past(timeline_.front(), now)) return false;  // no frames: not taken (past)
+    timeline_.pop_front();
   }
   return true;
 }

@@ -285,9 +285,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // Decode if this chip receives it. `appended`: just appended, so not cut (cut is its end).
   void take(Entry& entry, bool appended = false);
   void prune();
-  inline bool done_with(Entry& e, sim::Time now) const;  // prune()'s test of the front entry
-  inline bool all_done_with(sim::Time now);              // done_with() every entry
-  std::size_t in_force(sim::Time t) const;               // index of the entry in force at t
+  inline bool done_with(Entry& e, sim::Time now) const;    // prune()'s test of the front entry
+  inline bool frames_over(Entry& e, sim::Time now) const;  // done_with() but for the report
+  inline bool all_done_with(sim::Time now);                // done_with() every entry
+  std::size_t in_force(sim::Time t) const;                 // index of the entry in force at t
   // The entry numbered `serial`, null when it is gone. Mostly the last one (a burst read
   // fires its reports before the next one comes): inline, the walk only for the others.
   Entry* find(std::uint64_t serial) {
@@ -357,8 +358,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
                  sim::Time before);
   template <bool kTelegram>  // the detection; false: the start report
   void fire_report();
-  inline bool plan_telegram_after_start(const Report& fired);      // true: planned
-  inline bool nothing_after_detection(const Report& fired) const;  // a plan would find none
+  inline bool plan_telegram_after_start(const Report& fired);  // true: planned
+  // A plan would find none; the entries before the fired one are pruned on the way.
+  inline bool nothing_after_detection(const Report& fired);
   inline bool start_report_past(const Entry& e, const FrameState& st, sim::Time now) const;
   void plan_monitor();
   void fire_monitor();
@@ -381,7 +383,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // Never empty; front in force now (or earlier). It holds a handful of entries, and the
   // front goes at most reads: a FrontDropVector moves none then (a deque of entries this
   // size would allocate a block every second one).
-  sim::FrontDropVector<Entry> timeline_;
+  sim::FrontDropVector<Entry, 16> timeline_;
   std::uint64_t next_serial_ = 1;
   // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach the
   // next receiver (the burst the hop handed on, so it needs no copy of its own), and when

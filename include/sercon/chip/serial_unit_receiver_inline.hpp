@@ -89,19 +89,29 @@ inline void SerialReceiver::work_out(Entry& e, std::size_t first) {
 // force, e can go.
 inline bool SerialReceiver::done_with(Entry& e, sim::Time now) const {
   if ((e.serial == report_.serial && report_armed_) || e.serial == firing_) return false;
+  return frames_over(e, now);
+}
+
+// No report of e's frames is still to come. Mostly none is left (a burst not taken, or one
+// whose detection has fired): known at once.
+inline bool SerialReceiver::frames_over(Entry& e, sim::Time now) const {
+  if (e.frames.empty()) return true;
   // The last frame's detection (after its end) still to come? It comes at most 5.5 bits
   // + 4 MCLK periods after the end (pipeline()): past that it need not be worked out.
-  if (!e.frames.empty()) {
-    const FrameState& last = e.frames.back();
-    if (last.end >= now) return false;
-    if (!surely_over(e, last, now) && telegram_report(e, e.frames.size() - 1) >= now) {
-      return false;
-    }
-  }
-  return true;
+  const FrameState& last = e.frames.back();
+  if (last.end >= now) return false;
+  return surely_over(e, last, now) || telegram_report(e, e.frames.size() - 1) < now;
 }
 
 inline bool SerialReceiver::all_done_with(sim::Time now) {
+  // Nothing planned or being fired (the usual case at an own telegram's settle): only the
+  // frames are left to ask.
+  if (!report_armed_ && firing_ == kNoSerial) {
+    for (Entry& e : timeline_) {
+      if (!frames_over(e, now)) return false;
+    }
+    return true;
+  }
   for (Entry& e : timeline_) {
     if (!done_with(e, now)) return false;
   }
