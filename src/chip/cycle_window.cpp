@@ -9,13 +9,9 @@ CycleWindow::CycleWindow(TimeBase& time_base, Interrupts& interrupts,
     : time_base_(time_base),
       interrupts_(interrupts),
       closed_empty_(std::move(closed_empty)),
-      close_event_(time_base) {}
+      close_event_(time_base, this) {}
 
-void CycleWindow::closes(void* window) {
-  auto& w = *static_cast<CycleWindow*>(window);
-  w.close_event_.forget();
-  w.close();
-}
+void CycleWindow::closes(void* window) { static_cast<CycleWindow*>(window)->close(); }
 
 // The slave's free-wheel first: a handler run from the INT0 / INT1 callback of
 // INT_MSTMISS reads the substitute cycle's counter.

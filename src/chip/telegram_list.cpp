@@ -11,7 +11,7 @@ TelegramList::TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& cl
       scheduler_(time_base.scheduler()),
       ram_(ram),
       client_(client),
-      event_(time_base) {}
+      event_(time_base, this) {}
 
 // The time base may already be gone when units are destroyed (its destructor cancels its
 // own events); the scheduler outlives every chip.
@@ -115,7 +115,7 @@ void TelegramList::walk_from(const ListItem& first) {
 bool TelegramList::arm(const ListItem& item) {
   switch (item.kind) {
     case Kind::Transmit:
-      if (time_base_.at_cycle_time(event_, item.time, &TelegramList::transmit_time, this) == 0) {
+      if (!time_base_.at_cycle_time(event_, item.time, &TelegramList::transmit_time)) {
         set_state(State::Idle);
         return false;  // late: not sent in this cycle
       }
@@ -124,7 +124,7 @@ bool TelegramList::arm(const ListItem& item) {
     case Kind::Receive:
       return arm_receive(item);
     case Kind::EndMarker:
-      if (time_base_.at_cycle_time(event_, item.time, &TelegramList::end_time, this) == 0) {
+      if (!time_base_.at_cycle_time(event_, item.time, &TelegramList::end_time)) {
         set_state(State::Idle);
         client_.end_reached(item);
         return false;
@@ -168,7 +168,6 @@ void TelegramList::transmit_time(void* list) { static_cast<TelegramList*>(list)-
 void TelegramList::end_time(void* list) { static_cast<TelegramList*>(list)->fire_end(); }
 
 [[gnu::flatten]] void TelegramList::fire_transmit() {
-  event_.forget();
   set_state(State::Idle);
   const ListItem item = item_;
   try {
@@ -196,7 +195,6 @@ void TelegramList::close_window() {
 
 // No list_moved(): offer() answers NotExpected before (end marker armed) and after.
 void TelegramList::fire_end() {
-  event_.forget();
   set_state(State::Idle);
   client_.end_reached(item_);
 }

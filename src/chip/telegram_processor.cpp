@@ -49,7 +49,7 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
 
 // Only the scheduler is touched: the time base may be gone (it cancels its own events).
 TelegramProcessor::~TelegramProcessor() {
-  scheduler_.cancel(tend_event_);
+  scheduler_.disown(tend_event_);
   scheduler_.cancel(rscend_event_);
 }
 
@@ -58,9 +58,8 @@ void TelegramProcessor::reset(ResetCause) {
   mst_.stop();
   stop_receiving();
   wants_.flag_clear = kNone;
-  scheduler_.cancel(tend_event_);
+  scheduler_.cancel_owned(tend_event_);
   scheduler_.cancel(rscend_event_);
-  tend_event_ = {};
   rscend_event_ = {};
   serial_.interest_changed();
 }
@@ -273,14 +272,15 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
   }
   const sim::Time end = serial_.transmitter().send(now, item.adr(), data);
   // The previous telegram's end may be due at this very instant: raise it now.
-  if (scheduler_.cancel(tend_event_)) interrupts_.raise(Irq::Tend);
-  tend_event_ = scheduler_.at(end, &TelegramProcessor::transmission_ended, this);
+  if (scheduler_.owned_pending(tend_event_)) {
+    scheduler_.cancel_owned(tend_event_);
+    interrupts_.raise(Irq::Tend);
+  }
+  scheduler_.arm_owned(tend_event_, end);
 }
 
 void TelegramProcessor::transmission_ended(void* processor) {
-  auto& self = *static_cast<TelegramProcessor*>(processor);
-  self.tend_event_ = {};
-  self.interrupts_.raise(Irq::Tend);
+  static_cast<TelegramProcessor*>(processor)->interrupts_.raise(Irq::Tend);
 }
 
 void TelegramProcessor::end_reached(const ListItem&) { interrupts_.raise(Irq::Endmk); }

@@ -37,20 +37,23 @@ TimeBase::~TimeBase() {
   for (OwnedEvent* owned : owned_) owned->time_base_ = nullptr;
 }
 
-TimeBase::OwnedEvent::OwnedEvent(TimeBase& time_base)
-    : time_base_(&time_base), scheduler_(time_base.scheduler_) {
+// The action is given at each arm (at_cycle_time).
+TimeBase::OwnedEvent::OwnedEvent(TimeBase& time_base, void* context)
+    : time_base_(&time_base),
+      scheduler_(time_base.scheduler_),
+      slot_(scheduler_.own(nullptr, context)) {
   time_base.owned_.push_back(this);
 }
 
 TimeBase::OwnedEvent::~OwnedEvent() {
-  scheduler_.cancel(sim::Scheduler::EventId{id_});
+  scheduler_.disown(slot_);
   if (time_base_ != nullptr) std::erase(time_base_->owned_, this);
 }
 
 void TimeBase::cancel_all() {
   for (const Planned& planned : planned_) scheduler_.cancel(planned.event);
   planned_.clear();
-  for (OwnedEvent* owned : owned_) scheduler_.cancel(sim::Scheduler::EventId{owned->id_});
+  for (OwnedEvent* owned : owned_) scheduler_.cancel_owned(owned->slot_);
 }
 
 void TimeBase::reset(ResetCause) {
@@ -134,7 +137,8 @@ void TimeBase::on_register_change(std::uint8_t address) {
   const sim::Time changed_at = mclk_.time_of(edge);
   struct Moved {
     std::uint64_t asked;
-    sim::Scheduler::EventId event;
+    sim::Scheduler::EventId event;  // 0: `owned` names an owned event
+    const OwnedEvent* owned;
     std::int64_t cycle_time;
     sim::Time* when;
   };
@@ -142,18 +146,22 @@ void TimeBase::on_register_change(std::uint8_t address) {
   for (Planned& planned : planned_) {
     // Ran or cancelled, or due at the tick before the change: stays.
     if (planned.when <= changed_at || !scheduler_.pending(planned.event)) continue;
-    moved.push_back(Moved{planned.asked, planned.event, planned.cycle_time, &planned.when});
+    moved.push_back(
+        Moved{planned.asked, planned.event, nullptr, planned.cycle_time, &planned.when});
   }
   for (OwnedEvent* owned : owned_) {
-    const sim::Scheduler::EventId event{owned->id_};
-    if (owned->when_ <= changed_at || !scheduler_.pending(event)) continue;
-    moved.push_back(Moved{owned->asked_, event, owned->cycle_time_, &owned->when_});
+    if (owned->when_ <= changed_at || !owned->pending()) continue;
+    moved.push_back(Moved{owned->asked_, {}, owned, owned->cycle_time_, &owned->when_});
   }
   std::sort(moved.begin(), moved.end(),
             [](const Moved& a, const Moved& b) { return a.asked < b.asked; });
   for (const Moved& m : moved) {
     *m.when = time_of_step(m.cycle_time);
-    scheduler_.move(m.event, *m.when);
+    if (m.owned != nullptr) {
+      scheduler_.move_owned(m.owned->slot_, *m.when);
+    } else {
+      scheduler_.move(m.event, *m.when);
+    }
   }
   for (auto& listener : divider_listeners_) listener(edge, tick_period());
 }

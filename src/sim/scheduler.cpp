@@ -216,7 +216,16 @@ std::size_t Scheduler::pending_count() const {
 bool Scheduler::move(EventId id, Time when) {
   if (when < now_) throw_past("Scheduler::move", when, now_);
   if (live_slot(id) == nullptr) return false;
-  const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
+  requeue(static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1), when);
+  return true;
+}
+
+void Scheduler::move_owned(OwnedSlot owned, Time when) {
+  if (when < now_) throw_past("Scheduler::move_owned", when, now_);
+  requeue(owned, when);
+}
+
+void Scheduler::requeue(std::uint32_t index, Time when) {
   Slot& slot = slots_[index];
   if (slot.when <= near_limit_) {
     near_.remove(slot.when, index, slot.generation);
@@ -225,7 +234,6 @@ bool Scheduler::move(EventId id, Time when) {
   }
   slot.when = when;
   insert(when, index, slot.generation);
-  return true;
 }
 
 void Scheduler::release(std::uint32_t index) {

@@ -458,6 +458,94 @@ TEST(Scheduler, AnOwnedSlotArmedForNowRunsAsAtWouldThroughRandomSteps) {
   for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_now_twin(seed * 104729u);
 }
 
+// arm_owned() with an action per arm and move_owned() against at() and move(): the owned
+// event armed with one of two actions (from outside and from its own action), moved,
+// cancelled, among events near and far (past the scheduler's horizon): the same events run
+// at the same times in the same order.
+void run_owned_action_twin(std::uint32_t seed) {
+  auto run = [seed](bool owned) {
+    Scheduler s;
+    std::vector<std::pair<Time, int>> seen;
+    std::uint32_t random = seed;
+    auto next_random = [&random](std::uint32_t range) {
+      random = random * 1103515245u + 12345u;
+      return (random >> 8) % range;
+    };
+    struct Owner {
+      Scheduler* s;
+      std::vector<std::pair<Time, int>>* seen;
+      std::uint32_t* random;
+      bool owned;
+      Scheduler::OwnedSlot slot = 0;
+      Scheduler::EventId id{};
+      bool armed = false;
+      int label = 100000;
+      void arm(Time when, bool second) {
+        const Scheduler::Action action = second ? &Owner::fire_second : &Owner::fire_first;
+        if (owned) {
+          s->arm_owned(slot, when, action);
+        } else {
+          id = s->at(when, action, this);
+        }
+        armed = true;
+      }
+      void move(Time when) {
+        if (owned) {
+          s->move_owned(slot, when);
+        } else {
+          EXPECT_TRUE(s->move(id, when));
+        }
+      }
+      void cancel() {
+        if (owned) {
+          s->cancel_owned(slot);
+        } else {
+          s->cancel(id);
+        }
+        armed = false;
+      }
+      void fire(int kind) {
+        armed = false;
+        seen->emplace_back(s->now(), kind * 1000000 + label++);
+        *random = *random * 1103515245u + 12345u;
+        if ((*random >> 8) % 2 == 0)
+          arm(s->now() + ((*random >> 12) % 4) * 10, (*random >> 16) % 2);
+      }
+      static void fire_first(void* self) { static_cast<Owner*>(self)->fire(1); }
+      static void fire_second(void* self) { static_cast<Owner*>(self)->fire(2); }
+    } owner{&s, &seen, &random, owned};
+    if (owned) owner.slot = s.own(&Owner::fire_first, &owner);
+    int label = 0;
+    auto later = [&] {
+      return next_random(8) == 0 ? static_cast<Time>(next_random(3) + 1) * 100 * kMicrosecond
+                                 : static_cast<Time>(next_random(8)) * 10;
+    };
+    for (int round = 0; round < 300; ++round) {
+      for (std::uint32_t i = next_random(5); i > 0; --i) {
+        const Time when = s.now() + later();
+        const int mine = label++;
+        s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
+      }
+      const std::uint32_t what = next_random(5);
+      if (what == 0 && !owner.armed) owner.arm(s.now() + later(), next_random(2) == 1);
+      if (what == 1 && owner.armed) owner.cancel();
+      if (what == 2 && owner.armed) owner.move(s.now() + later());
+      const Time step =
+          next_random(10) == 0 ? 150 * kMicrosecond : static_cast<Time>(next_random(4)) * 10;
+      s.run_until(s.now() + step);
+    }
+    s.run_until(s.now() + kMillisecond);
+    return seen;
+  };
+  const auto with_at = run(false);
+  const auto with_owned = run(true);
+  EXPECT_EQ(with_owned, with_at) << "seed " << seed;
+}
+
+TEST(Scheduler, AnOwnedSlotWithAnActionPerArmMovedRunsAsAtAndMoveWouldThroughRandomSteps) {
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_action_twin(seed * 15485863u);
+}
+
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
   EXPECT_EQ(period_of_hz(16'000'000), 62'500);  // 16 Mbit/s bit: 62.5 ns
   EXPECT_EQ(period_of_hz(64'000'000), 15'625);  // 64 MHz MCLK: 15.625 ns

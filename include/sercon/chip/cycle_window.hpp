@@ -37,7 +37,6 @@ class CycleWindow {
   void expect_next(const CycleStart& start) {
     // No close is pending: the time base dropped one later than now, judge() decided one due
     // now, and a close that ran started this cycle (shift_cycle).
-    close_event_.forget();
     state_ = State::Unsynced;
     tscyc_ = start.tscyc;
     if (tscyc_ == 0) return;
@@ -46,12 +45,10 @@ class CycleWindow {
     closes_ = tscyc_ + static_cast<std::int16_t>(regs.field_value(kJtscyc2));
     state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
     // A window programmed to close before the counter's start closes at the first step.
-    time_base_.at_cycle_time(close_event_, std::max(closes_, start.count), &CycleWindow::closes,
-                             this);
+    time_base_.at_cycle_time(close_event_, std::max(closes_, start.count), &CycleWindow::closes);
   }
   void forget() {  // back to Unsynced
-    time_base_.cancel(close_event_.id());
-    close_event_.forget();
+    close_event_.cancel();
     state_ = State::Unsynced;
   }
   // An MST (slave) or CYC_CLK (master) arrives now: raises the flags it earns. A close
@@ -59,10 +56,8 @@ class CycleWindow {
   // not matter. Inline: a step of every slave's cycle start.
   void judge(bool master) {
     // Mostly the close is still ahead: its time is looked at before the scheduler is asked.
-    if (close_event_.when() <= time_base_.scheduler().now() &&
-        time_base_.when(close_event_.id()).has_value()) {
-      time_base_.cancel(close_event_.id());
-      close_event_.forget();
+    if (close_event_.when() <= time_base_.scheduler().now() && close_event_.pending()) {
+      close_event_.cancel();
       close();
     }
     const std::int64_t position = time_base_.count();

@@ -140,10 +140,7 @@ class TelegramList {
   void fire_end();
   // Mostly neither is armed (a receive header without TCHK waits, or the end marker ran).
   void cancel_event() {
-    if (event_.id() != 0) {
-      time_base_.cancel(event_.id());
-      event_.forget();
-    }
+    event_.cancel();
     if (window_judge_.value != 0) {
       scheduler_.cancel(window_judge_);
       window_judge_ = {};

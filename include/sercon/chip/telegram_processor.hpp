@@ -129,7 +129,9 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   // that came while an ACHK = 1 header for another address waited; FLMDTADR is cleared at
   // its detection unless it is an MST.
   ReceiveWants wants_;
-  sim::Scheduler::EventId tend_event_{};
+  // INT_TEND at the end of each telegram sent: one owned slot for the processor's life.
+  sim::Scheduler::OwnedSlot tend_event_ =
+      scheduler_.own(&TelegramProcessor::transmission_ended, this);
   sim::Scheduler::EventId rscend_event_{};
   sim::Time rscend_at_ = 0;
   std::uint64_t list_faults_ = 0;

@@ -124,44 +124,46 @@ class TimeBase : public ChipUnit {
     return event.value;
   }
   // A cycle-time event its owner keeps in place, for an owner with at most one pending at a
-  // time that arms several a cycle (a list walk, the MST window): armed without an entry in
-  // the time base's own record to push and prune. Dropped at cycle starts, moved by MCLKDIV
-  // changes and cancelled at reset as the others are, in the order all were asked for.
+  // time that arms several a cycle (a list walk, the MST window): one owned scheduler slot
+  // (no EventId, no free-list slot), armed without an entry in the time base's own record
+  // to push and prune. Dropped at cycle starts, moved by MCLKDIV changes and cancelled at
+  // reset as the others are, in the order all were asked for. Its actions get `context`.
   // Registered for the owner's lifetime: either may be destroyed first (the owner's
   // destruction cancels its event).
   class OwnedEvent {
    public:
-    explicit OwnedEvent(TimeBase& time_base);
+    OwnedEvent(TimeBase& time_base, void* context);
     ~OwnedEvent();
     OwnedEvent(const OwnedEvent&) = delete;
     OwnedEvent& operator=(const OwnedEvent&) = delete;
 
-    CycleEvent id() const { return id_; }
+    // Pending: armed, and it has not run, been cancelled or dropped since.
+    bool pending() const { return scheduler_.owned_pending(slot_); }
     // When the event is due: meaningful only while it is pending (a cheap first test before
     // asking the scheduler whether it is).
     sim::Time when() const { return when_; }
-    void forget() { id_ = 0; }  // it ran: the owner's action clears it
+    void cancel() { scheduler_.cancel_owned(slot_); }  // if pending
 
    private:
     friend class TimeBase;
     TimeBase* time_base_;  // null once the time base is gone
     sim::Scheduler& scheduler_;
-    CycleEvent id_ = 0;
+    sim::Scheduler::OwnedSlot slot_;
     std::int64_t cycle_time_ = 0;
     sim::Time when_ = 0;       // kept up to date while pending
     std::uint64_t asked_ = 0;  // order among all cycle-time events asked for
   };
-  // at_cycle_time() into `owned` (whose earlier event has run or was cancelled). Returns its
-  // id, 0 (and no event) when the step is not ahead.
-  [[gnu::always_inline]] CycleEvent at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
-                                                  sim::Scheduler::Action action, void* context) {
+  // at_cycle_time() into `owned` (whose earlier event has run or was cancelled), with its
+  // context. False (and no event) when the step is not ahead.
+  [[gnu::always_inline]] bool at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
+                                            sim::Scheduler::Action action) {
     const std::optional<sim::Time> step = step_ahead(cycle_time);
-    if (!step) return owned.id_ = 0;
-    owned.id_ = scheduler_.at(*step, action, context).value;
+    if (!step) return false;
+    scheduler_.arm_owned(owned.slot_, *step, action);
     owned.cycle_time_ = cycle_time;
     owned.when_ = *step;
     owned.asked_ = ++asked_;
-    return owned.id_;
+    return true;
   }
   void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
@@ -233,9 +235,9 @@ class TimeBase : public ChipUnit {
   [[gnu::always_inline]] void drop_future_events() {
     const sim::Time now = scheduler_.now();
     if (!planned_.empty()) drop_future_planned(now);
-    // An owned event due now stays as well (a cancelled or run one's id no longer matches).
+    // An owned event due now stays as well (cancelling one that ran or was cancelled does nothing).
     for (const OwnedEvent* owned : owned_) {
-      if (owned->when_ > now) scheduler_.cancel(sim::Scheduler::EventId{owned->id_});
+      if (owned->when_ > now) scheduler_.cancel_owned(owned->slot_);
     }
   }
   void drop_future_planned(sim::Time now);

@@ -82,6 +82,15 @@ class Scheduler {
     }
     insert(now_, owned, generation);
   }
+  // arm_owned() with `action` for this arm: an owner whose one pending event does one of
+  // several things (a list walk's transmit or end marker). The slot keeps it for later arms.
+  void arm_owned(OwnedSlot owned, Time when, Action action) {
+    owned_actions_[slots_[owned].next_free & ~kOwned] = action;
+    arm_owned(owned, when);
+  }
+  // Moves the pending owned event to `when` as move() moves an event: it then runs after
+  // the events already due at `when`. Throws std::invalid_argument if `when` is in the past.
+  void move_owned(OwnedSlot owned, Time when);
   // Gives the slot back (cancelled if pending): the owner is done with it.
   void disown(OwnedSlot owned);
   bool owned_pending(OwnedSlot owned) const { return slots_[owned].generation % 2 == 1; }
@@ -171,7 +180,8 @@ class Scheduler {
     slot.next_free = free_head_;
     free_head_ = index + 1;
   }
-  void release(std::uint32_t index);  // cancels a live slot
+  void release(std::uint32_t index);             // cancels a live slot
+  void requeue(std::uint32_t index, Time when);  // a pending event's entry, to `when`
   const Slot* live_slot(EventId id) const {
     const std::uint64_t index = (id.value & 0xFFFF'FFFFu);
     if (index == 0 || index > slots_.size()) return nullptr;
