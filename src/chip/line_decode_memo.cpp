@@ -72,6 +72,18 @@ const BurstDecode& decode_burst_prefix(const SharedBits& bits, std::size_t cut_b
 // Fewer (no data): TooShort, every byte after the address as data, both FCS fields 0.
 namespace {
 
+// The first and the last sizeof(Word) of n bytes (sizeof(Word) <= n <= 2 sizeof(Word)),
+// each as one load and one store: together they cover all n.
+template <class Word>
+void move_head_and_tail(std::uint8_t* to, const std::uint8_t* from, std::size_t n) {
+  Word head;
+  Word tail;
+  std::memcpy(&head, from, sizeof(Word));
+  std::memcpy(&tail, from + n - sizeof(Word), sizeof(Word));
+  std::memcpy(to, &head, sizeof(Word));
+  std::memcpy(to + n - sizeof(Word), &tail, sizeof(Word));
+}
+
 // `to` made a copy of `from`, in the storage it has (a recycled decode, shared_bits.hpp): no
 // library call for a telegram of up to 16 bytes unless `to` must grow.
 void copy_bytes(std::vector<std::uint8_t>& to, std::span<const std::uint8_t> from) {
@@ -85,19 +97,9 @@ void copy_bytes(std::vector<std::uint8_t>& to, std::span<const std::uint8_t> fro
   const std::uint8_t* const f = from.data();
   // Head and tail moves, overlapping for sizes between the powers of two.
   if (n >= 8 && n <= 16) {
-    std::uint64_t head;
-    std::uint64_t tail;
-    std::memcpy(&head, f, 8);
-    std::memcpy(&tail, f + n - 8, 8);
-    std::memcpy(t, &head, 8);
-    std::memcpy(t + n - 8, &tail, 8);
+    move_head_and_tail<std::uint64_t>(t, f, n);
   } else if (n >= 4 && n < 8) {
-    std::uint32_t head;
-    std::uint32_t tail;
-    std::memcpy(&head, f, 4);
-    std::memcpy(&tail, f + n - 4, 4);
-    std::memcpy(t, &head, 4);
-    std::memcpy(t + n - 4, &tail, 4);
+    move_head_and_tail<std::uint32_t>(t, f, n);
   } else if (n > 0 && n < 4) {
     t[0] = f[0];
     t[n / 2] = f[n / 2];

@@ -297,253 +297,210 @@ TEST(Scheduler, OwnedEventsRunWhereAtWouldHavePutThem) {
   EXPECT_EQ(order.size(), 8u);
 }
 
-// The twin of the above over many random steps: the same workload once with an owned slot
-// and once with at() for the owner's event (armed from outside, again from its action,
-// cancelled), among other events: the same events run at the same times in the same order.
-void run_owned_twin(std::uint32_t seed) {
-  struct Run {
-    std::vector<std::pair<Time, int>> seen;
-  };
-  auto run = [seed](bool owned) {
-    Scheduler s;
-    Run out;
-    std::uint32_t random = seed;
-    auto next_random = [&random](std::uint32_t range) {
-      random = random * 1103515245u + 12345u;
-      return (random >> 8) % range;
-    };
-    struct Owner {
-      Scheduler* s;
-      Run* out;
-      std::uint32_t* random;
-      bool owned;
-      Scheduler::OwnedSlot slot = 0;
-      Scheduler::EventId id{};
-      bool armed = false;
-      int label = 1000;
-      void arm(Time when) {
-        if (owned) {
-          s->arm_owned(slot, when);
-        } else {
-          id = s->at(when, &Owner::fire, this);
-        }
-        armed = true;
-      }
-      void cancel() {
-        if (owned) {
-          s->cancel_owned(slot);
-        } else {
-          s->cancel(id);
-        }
-        armed = false;
-      }
-      static void fire(void* self) {
-        auto* o = static_cast<Owner*>(self);
-        o->armed = false;
-        o->out->seen.emplace_back(o->s->now(), o->label++);
-        *o->random = *o->random * 1103515245u + 12345u;
-        if ((*o->random >> 8) % 2 == 0) o->arm(o->s->now() + ((*o->random >> 12) % 4) * 10);
-      }
-    } owner{&s, &out, &random, owned};
-    if (owned) owner.slot = s.own(&Owner::fire, &owner);
-    int label = 0;
-    for (int round = 0; round < 200; ++round) {
-      for (std::uint32_t i = next_random(5); i > 0; --i) {
-        const Time when = s.now() + static_cast<Time>(next_random(8)) * 10;
-        const int mine = label++;
-        s.at(when, [&s, &out, mine] { out.seen.emplace_back(s.now(), mine); });
-      }
-      const std::uint32_t what = next_random(4);
-      if (what == 0 && !owner.armed) owner.arm(s.now() + static_cast<Time>(next_random(8)) * 10);
-      if (what == 1 && owner.armed) owner.cancel();
-      s.run_until(s.now() + static_cast<Time>(next_random(4)) * 10);
+// The owned-slot twin tests below run one random workload twice, once with the owner's
+// event on an owned slot and once through at() / move() / cancel(), and compare what ran:
+// the same events at the same times in the same order.
+using Seen = std::vector<std::pair<Time, int>>;
+
+// A linear congruential generator: the same draws in both runs of a twin test.
+struct Draws {
+  std::uint32_t state;
+  std::uint32_t next() {
+    state = state * 1103515245u + 12345u;
+    return state;
+  }
+  std::uint32_t below(std::uint32_t range) { return (next() >> 8) % range; }
+};
+
+// The owner's event, owned or through EventIds. When it runs it may arm itself again:
+// later (Later), for now (Now), or later with either of two actions (LaterEitherAction,
+// which arms the owned slot with an action per arm).
+struct TwinOwner {
+  enum class Again { Later, Now, LaterEitherAction };
+  Scheduler& s;
+  Seen& seen;
+  Draws& draws;
+  bool owned;
+  Again again;
+  int label = 100000;
+  Scheduler::OwnedSlot slot = 0;
+  Scheduler::EventId id{};
+  bool armed = false;
+
+  TwinOwner(Scheduler& scheduler, Seen& out, Draws& d, bool own_slot, Again a)
+      : s(scheduler), seen(out), draws(d), owned(own_slot), again(a) {
+    if (owned) slot = s.own(&TwinOwner::fire_first, this);
+  }
+  void arm(Time when, bool second = false) {
+    const Scheduler::Action action = second ? &TwinOwner::fire_second : &TwinOwner::fire_first;
+    if (!owned) {
+      id = s.at(when, action, this);
+    } else if (again == Again::LaterEitherAction) {
+      s.arm_owned(slot, when, action);
+    } else {
+      s.arm_owned(slot, when);
     }
-    s.run_until(s.now() + 1000);
-    return out.seen;
-  };
-  const auto with_at = run(false);
-  const auto with_owned = run(true);
-  EXPECT_EQ(with_owned, with_at) << "seed " << seed;
+    armed = true;
+  }
+  void arm_now() {
+    if (armed) return;
+    if (owned) {
+      s.arm_owned_now(slot);
+    } else {
+      id = s.at(s.now(), &TwinOwner::fire_first, this);
+    }
+    armed = true;
+  }
+  void move(Time when) {
+    if (owned) {
+      s.move_owned(slot, when);
+    } else {
+      EXPECT_TRUE(s.move(id, when));
+    }
+  }
+  void cancel() {
+    if (owned) {
+      s.cancel_owned(slot);
+    } else {
+      s.cancel(id);
+    }
+    armed = false;
+  }
+  void fire(int kind) {
+    armed = false;
+    seen.emplace_back(s.now(), kind * 1000000 + label++);
+    const std::uint32_t r = draws.next();
+    const Time soon = s.now() + static_cast<Time>((r >> 12) % 4) * 10;
+    switch (again) {
+      case Again::Later:
+        if ((r >> 8) % 2 == 0) arm(soon);
+        break;
+      case Again::Now:
+        if ((r >> 8) % 3 == 0) arm_now();  // again, right after itself
+        break;
+      case Again::LaterEitherAction:
+        if ((r >> 8) % 2 == 0) arm(soon, (r >> 16) % 2 == 1);
+        break;
+    }
+  }
+  static void fire_first(void* self) { static_cast<TwinOwner*>(self)->fire(1); }
+  static void fire_second(void* self) { static_cast<TwinOwner*>(self)->fire(2); }
+};
+
+// Mostly near, sometimes past the scheduler's horizon (a far entry).
+Time near_or_far(Draws& draws) {
+  return draws.below(8) == 0 ? static_cast<Time>(draws.below(3) + 1) * 100 * kMicrosecond
+                             : static_cast<Time>(draws.below(8)) * 10;
+}
+
+// How far the scheduler runs between steps: mostly a little, sometimes past the horizon.
+Time run_step(Draws& draws) {
+  return draws.below(10) == 0 ? 150 * kMicrosecond : static_cast<Time>(draws.below(4)) * 10;
+}
+
+// arm_owned() and cancel_owned(): the owner armed from outside and again from its action,
+// cancelled, among other events.
+Seen run_owned_twin(std::uint32_t seed, bool owned) {
+  Scheduler s;
+  Seen seen;
+  Draws draws{seed};
+  TwinOwner owner(s, seen, draws, owned, TwinOwner::Again::Later);
+  int label = 0;
+  for (int round = 0; round < 200; ++round) {
+    for (std::uint32_t i = draws.below(5); i > 0; --i) {
+      const Time when = s.now() + static_cast<Time>(draws.below(8)) * 10;
+      const int mine = label++;
+      s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
+    }
+    const std::uint32_t what = draws.below(4);
+    if (what == 0 && !owner.armed) owner.arm(s.now() + static_cast<Time>(draws.below(8)) * 10);
+    if (what == 1 && owner.armed) owner.cancel();
+    s.run_until(s.now() + static_cast<Time>(draws.below(4)) * 10);
+  }
+  s.run_until(s.now() + 1000);
+  return seen;
 }
 
 TEST(Scheduler, AnOwnedSlotRunsAsAtWouldThroughRandomSteps) {
-  for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_twin(seed * 7919u);
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
+    EXPECT_EQ(run_owned_twin(seed * 7919u, true), run_owned_twin(seed * 7919u, false))
+        << "seed " << seed;
+  }
 }
 
 // arm_owned_now() against at(now()): the owned event armed for now from other events, from
 // its own action and between runs (when now may lie past the queue's near part), cancelled
-// at times, among events near and far (past the scheduler's horizon): the same events run
-// at the same times in the same order.
-void run_owned_now_twin(std::uint32_t seed) {
-  auto run = [seed](bool owned) {
-    Scheduler s;
-    std::vector<std::pair<Time, int>> seen;
-    std::uint32_t random = seed;
-    auto next_random = [&random](std::uint32_t range) {
-      random = random * 1103515245u + 12345u;
-      return (random >> 8) % range;
-    };
-    struct Owner {
-      Scheduler* s;
-      std::vector<std::pair<Time, int>>* seen;
-      std::uint32_t* random;
-      bool owned;
-      Scheduler::OwnedSlot slot = 0;
-      Scheduler::EventId id{};
-      bool armed = false;
-      int label = 100000;
-      void arm_now() {
-        if (armed) return;
-        if (owned) {
-          s->arm_owned_now(slot);
-        } else {
-          id = s->at(s->now(), &Owner::fire, this);
-        }
-        armed = true;
-      }
-      void cancel() {
-        if (owned) {
-          s->cancel_owned(slot);
-        } else {
-          s->cancel(id);
-        }
-        armed = false;
-      }
-      static void fire(void* self) {
-        auto* o = static_cast<Owner*>(self);
-        o->armed = false;
-        o->seen->emplace_back(o->s->now(), o->label++);
-        *o->random = *o->random * 1103515245u + 12345u;
-        if ((*o->random >> 8) % 3 == 0) o->arm_now();  // again, right after itself
-      }
-    } owner{&s, &seen, &random, owned};
-    if (owned) owner.slot = s.own(&Owner::fire, &owner);
-    int label = 0;
-    // Some events arm the owner for now or cancel it when they run.
-    std::function<void(int, std::uint32_t)> event = [&](int mine, std::uint32_t what) {
-      seen.emplace_back(s.now(), mine);
-      if (what == 0) owner.arm_now();
-      if (what == 1 && owner.armed) owner.cancel();
-      if (what == 2) {  // schedules another for now or soon, which may arm the owner
-        const int next = label++;
-        const std::uint32_t next_what = next_random(4);
-        s.at(s.now() + static_cast<Time>(next_random(3)) * 10,
-             [&event, next, next_what] { event(next, next_what); });
-      }
-    };
-    for (int round = 0; round < 300; ++round) {
-      for (std::uint32_t i = next_random(5); i > 0; --i) {
-        // Mostly near, sometimes past the horizon (a far entry).
-        const Time delay = next_random(8) == 0
-                               ? static_cast<Time>(next_random(3) + 1) * 100 * kMicrosecond
-                               : static_cast<Time>(next_random(8)) * 10;
-        const int mine = label++;
-        const std::uint32_t what = next_random(5);
-        s.at(s.now() + delay, [&event, mine, what] { event(mine, what); });
-      }
-      if (next_random(6) == 0) owner.arm_now();
-      const Time step =
-          next_random(10) == 0 ? 150 * kMicrosecond : static_cast<Time>(next_random(4)) * 10;
-      s.run_until(s.now() + step);
+// at times, among events near and far.
+Seen run_owned_now_twin(std::uint32_t seed, bool owned) {
+  Scheduler s;
+  Seen seen;
+  Draws draws{seed};
+  TwinOwner owner(s, seen, draws, owned, TwinOwner::Again::Now);
+  int label = 0;
+  // Some events arm the owner for now or cancel it when they run.
+  std::function<void(int, std::uint32_t)> event = [&](int mine, std::uint32_t what) {
+    seen.emplace_back(s.now(), mine);
+    if (what == 0) owner.arm_now();
+    if (what == 1 && owner.armed) owner.cancel();
+    if (what == 2) {  // schedules another for now or soon, which may arm the owner
+      const int next = label++;
+      const std::uint32_t next_what = draws.below(4);
+      s.at(s.now() + static_cast<Time>(draws.below(3)) * 10,
+           [&event, next, next_what] { event(next, next_what); });
     }
-    s.run_until(s.now() + kMillisecond);
-    return seen;
   };
-  const auto with_at = run(false);
-  const auto with_owned = run(true);
-  EXPECT_EQ(with_owned, with_at) << "seed " << seed;
+  for (int round = 0; round < 300; ++round) {
+    for (std::uint32_t i = draws.below(5); i > 0; --i) {
+      const Time delay = near_or_far(draws);
+      const int mine = label++;
+      const std::uint32_t what = draws.below(5);
+      s.at(s.now() + delay, [&event, mine, what] { event(mine, what); });
+    }
+    if (draws.below(6) == 0) owner.arm_now();
+    s.run_until(s.now() + run_step(draws));
+  }
+  s.run_until(s.now() + kMillisecond);
+  return seen;
 }
 
 TEST(Scheduler, AnOwnedSlotArmedForNowRunsAsAtWouldThroughRandomSteps) {
-  for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_now_twin(seed * 104729u);
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
+    EXPECT_EQ(run_owned_now_twin(seed * 104729u, true), run_owned_now_twin(seed * 104729u, false))
+        << "seed " << seed;
+  }
 }
 
 // arm_owned() with an action per arm and move_owned() against at() and move(): the owned
 // event armed with one of two actions (from outside and from its own action), moved,
-// cancelled, among events near and far (past the scheduler's horizon): the same events run
-// at the same times in the same order.
-void run_owned_action_twin(std::uint32_t seed) {
-  auto run = [seed](bool owned) {
-    Scheduler s;
-    std::vector<std::pair<Time, int>> seen;
-    std::uint32_t random = seed;
-    auto next_random = [&random](std::uint32_t range) {
-      random = random * 1103515245u + 12345u;
-      return (random >> 8) % range;
-    };
-    struct Owner {
-      Scheduler* s;
-      std::vector<std::pair<Time, int>>* seen;
-      std::uint32_t* random;
-      bool owned;
-      Scheduler::OwnedSlot slot = 0;
-      Scheduler::EventId id{};
-      bool armed = false;
-      int label = 100000;
-      void arm(Time when, bool second) {
-        const Scheduler::Action action = second ? &Owner::fire_second : &Owner::fire_first;
-        if (owned) {
-          s->arm_owned(slot, when, action);
-        } else {
-          id = s->at(when, action, this);
-        }
-        armed = true;
-      }
-      void move(Time when) {
-        if (owned) {
-          s->move_owned(slot, when);
-        } else {
-          EXPECT_TRUE(s->move(id, when));
-        }
-      }
-      void cancel() {
-        if (owned) {
-          s->cancel_owned(slot);
-        } else {
-          s->cancel(id);
-        }
-        armed = false;
-      }
-      void fire(int kind) {
-        armed = false;
-        seen->emplace_back(s->now(), kind * 1000000 + label++);
-        *random = *random * 1103515245u + 12345u;
-        if ((*random >> 8) % 2 == 0)
-          arm(s->now() + ((*random >> 12) % 4) * 10, (*random >> 16) % 2);
-      }
-      static void fire_first(void* self) { static_cast<Owner*>(self)->fire(1); }
-      static void fire_second(void* self) { static_cast<Owner*>(self)->fire(2); }
-    } owner{&s, &seen, &random, owned};
-    if (owned) owner.slot = s.own(&Owner::fire_first, &owner);
-    int label = 0;
-    auto later = [&] {
-      return next_random(8) == 0 ? static_cast<Time>(next_random(3) + 1) * 100 * kMicrosecond
-                                 : static_cast<Time>(next_random(8)) * 10;
-    };
-    for (int round = 0; round < 300; ++round) {
-      for (std::uint32_t i = next_random(5); i > 0; --i) {
-        const Time when = s.now() + later();
-        const int mine = label++;
-        s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
-      }
-      const std::uint32_t what = next_random(5);
-      if (what == 0 && !owner.armed) owner.arm(s.now() + later(), next_random(2) == 1);
-      if (what == 1 && owner.armed) owner.cancel();
-      if (what == 2 && owner.armed) owner.move(s.now() + later());
-      const Time step =
-          next_random(10) == 0 ? 150 * kMicrosecond : static_cast<Time>(next_random(4)) * 10;
-      s.run_until(s.now() + step);
+// cancelled, among events near and far.
+Seen run_owned_action_twin(std::uint32_t seed, bool owned) {
+  Scheduler s;
+  Seen seen;
+  Draws draws{seed};
+  TwinOwner owner(s, seen, draws, owned, TwinOwner::Again::LaterEitherAction);
+  int label = 0;
+  for (int round = 0; round < 300; ++round) {
+    for (std::uint32_t i = draws.below(5); i > 0; --i) {
+      const Time when = s.now() + near_or_far(draws);
+      const int mine = label++;
+      s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
     }
-    s.run_until(s.now() + kMillisecond);
-    return seen;
-  };
-  const auto with_at = run(false);
-  const auto with_owned = run(true);
-  EXPECT_EQ(with_owned, with_at) << "seed " << seed;
+    const std::uint32_t what = draws.below(5);
+    if (what == 0 && !owner.armed) owner.arm(s.now() + near_or_far(draws), draws.below(2) == 1);
+    if (what == 1 && owner.armed) owner.cancel();
+    if (what == 2 && owner.armed) owner.move(s.now() + near_or_far(draws));
+    s.run_until(s.now() + run_step(draws));
+  }
+  s.run_until(s.now() + kMillisecond);
+  return seen;
 }
 
 TEST(Scheduler, AnOwnedSlotWithAnActionPerArmMovedRunsAsAtAndMoveWouldThroughRandomSteps) {
-  for (std::uint32_t seed = 1; seed <= 50; ++seed) run_owned_action_twin(seed * 15485863u);
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
+    EXPECT_EQ(run_owned_action_twin(seed * 15485863u, true),
+              run_owned_action_twin(seed * 15485863u, false))
+        << "seed " << seed;
+  }
 }
 
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
