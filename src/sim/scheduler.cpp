@@ -20,6 +20,12 @@ namespace {
 
 void Scheduler::refuse_past(const char* what, Time when) const { throw_past(what, when, now_); }
 
+void Scheduler::refuse_arm(const char* what, OwnedSlot owned, Time when) const {
+  if (when < now_) throw_past(what, when, now_);
+  throw std::logic_error(std::string(what) + ": owned slot " + std::to_string(owned) +
+                         " is pending already (cancel_owned() it before arming it again)");
+}
+
 [[gnu::noinline]] std::uint32_t Scheduler::new_slot() {
   slots_.emplace_back();
   return static_cast<std::uint32_t>(slots_.size() - 1);
@@ -192,17 +198,29 @@ Scheduler::EventId Scheduler::at(Time when, Callback callback) {
 }
 
 Scheduler::OwnedSlot Scheduler::own(Action action, void* context) {
-  const std::uint32_t index = new_slot();  // a fresh one: no stale EventId names it
+  // A slot given back before may be taken: its generation only grows, so no stale EventId
+  // names it. So does an action index given back by disown().
+  const std::uint32_t index = free_slot_index();
   Slot& slot = slots_[index];
+  free_head_ = slot.next_free;
+  std::uint32_t action_index = 0;
+  if (free_actions_.empty()) {
+    action_index = static_cast<std::uint32_t>(owned_actions_.size());
+    owned_actions_.push_back(action);
+  } else {
+    action_index = free_actions_.back();
+    free_actions_.pop_back();
+    owned_actions_[action_index] = action;
+  }
   slot.context = context;
-  slot.next_free = kOwned | static_cast<std::uint32_t>(owned_actions_.size());
-  owned_actions_.push_back(action);
+  slot.next_free = kOwned | action_index;
   return index;
 }
 
 void Scheduler::disown(OwnedSlot owned) {
   cancel_owned(owned);  // even: not pending
   Slot& slot = slots_[owned];
+  free_actions_.push_back(slot.next_free & ~kOwned);
   slot.context = nullptr;
   ++slot.generation;  // odd, as a taken slot's: free_slot() makes it even again
   free_slot(owned);   // and links it (next_free no longer marks it owned)
@@ -222,6 +240,10 @@ bool Scheduler::move(EventId id, Time when) {
 
 void Scheduler::move_owned(OwnedSlot owned, Time when) {
   if (when < now_) throw_past("Scheduler::move_owned", when, now_);
+  if (!owned_pending(owned)) {
+    throw std::logic_error("Scheduler::move_owned: owned slot " + std::to_string(owned) +
+                           " is not pending");
+  }
   requeue(owned, when);
 }
 

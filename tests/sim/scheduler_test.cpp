@@ -297,6 +297,44 @@ TEST(Scheduler, OwnedEventsRunWhereAtWouldHavePutThem) {
   EXPECT_EQ(order.size(), 8u);
 }
 
+// An owned slot's rules are checked, not assumed: arming it while it is pending would leave
+// owned_pending() reading the wrong way from then on, and moving it while it is not pending
+// would look for a queue entry that is not there. A slot given back is taken again by the
+// next own(), with its action index, so a scheduler that outlives many owners does not grow.
+TEST(Scheduler, OwnedSlotRulesAreCheckedAndGivenBackSlotsAreTakenAgain) {
+  Scheduler s;
+  int runs = 0;
+  const Scheduler::Action count = [](void* n) { ++*static_cast<int*>(n); };
+  const Scheduler::OwnedSlot slot = s.own(count, &runs);
+  EXPECT_THROW(s.move_owned(slot, 10), std::logic_error);
+  s.arm_owned(slot, 10);
+  EXPECT_THROW(s.arm_owned(slot, 20), std::logic_error);
+  EXPECT_THROW(s.arm_owned_now(slot), std::logic_error);
+  EXPECT_THROW(s.arm_owned(slot, 20, count), std::logic_error);
+  EXPECT_THROW(s.arm_owned(slot, -1), std::invalid_argument);
+  EXPECT_TRUE(s.owned_pending(slot));
+  s.run_until(10);
+  EXPECT_EQ(runs, 1);  // the refused arms left the one event as it was
+  EXPECT_FALSE(s.owned_pending(slot));
+
+  s.disown(slot);
+  int other_runs = 0;
+  const Scheduler::OwnedSlot again = s.own(count, &other_runs);
+  EXPECT_EQ(again, slot);
+  s.arm_owned(again, 30);
+  s.run_until(30);
+  EXPECT_EQ(other_runs, 1);
+  EXPECT_EQ(runs, 1);
+  // Owners come and go (rings built one after another on one scheduler): one slot serves.
+  const Scheduler::OwnedSlot first = s.own(count, &runs);
+  s.disown(first);
+  for (int i = 0; i < 100; ++i) {
+    const Scheduler::OwnedSlot next = s.own(count, &runs);
+    EXPECT_EQ(next, first);
+    s.disown(next);
+  }
+}
+
 // The owned-slot twin tests below run one random workload twice, once with the owner's
 // event on an owned slot and once through at() / move() / cancel(), and compare what ran:
 // the same events at the same times in the same order.

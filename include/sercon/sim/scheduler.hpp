@@ -56,11 +56,11 @@ class Scheduler {
   // may arm it again (it is no longer pending while it runs).
   using OwnedSlot = std::uint32_t;
   OwnedSlot own(Action action, void* context);
-  // Queues the owned event at `when`; it must not be pending. Throws std::invalid_argument
-  // if `when` is in the past.
+  // Queues the owned event at `when`. Throws std::invalid_argument if `when` is in the
+  // past, std::logic_error if the event is pending already (cancel_owned() it first).
   void arm_owned(OwnedSlot owned, Time when) {
-    if (when < now_) [[unlikely]]
-      refuse_past("Scheduler::arm_owned", when);
+    if (when < now_ || owned_pending(owned)) [[unlikely]]
+      refuse_arm("Scheduler::arm_owned", owned, when);
     Slot& slot = slots_[owned];
     const std::uint32_t generation = ++slot.generation;  // odd: live
     slot.when = when;
@@ -71,6 +71,8 @@ class Scheduler {
   // (a slave's MST recognised at its load edge): mostly the queue's front is later than now,
   // and the entry goes just before it without a search.
   void arm_owned_now(OwnedSlot owned) {
+    if (owned_pending(owned)) [[unlikely]]
+      refuse_arm("Scheduler::arm_owned_now", owned, now_);
     Slot& slot = slots_[owned];
     const std::uint32_t generation = ++slot.generation;  // odd: live
     slot.when = now_;
@@ -85,11 +87,12 @@ class Scheduler {
   // arm_owned() with `action` for this arm: an owner whose one pending event does one of
   // several things (a list walk's transmit or end marker). The slot keeps it for later arms.
   void arm_owned(OwnedSlot owned, Time when, Action action) {
+    arm_owned(owned, when);  // first: refused, it leaves the slot's action as it was
     owned_actions_[slots_[owned].next_free & ~kOwned] = action;
-    arm_owned(owned, when);
   }
   // Moves the pending owned event to `when` as move() moves an event: it then runs after
-  // the events already due at `when`. Throws std::invalid_argument if `when` is in the past.
+  // the events already due at `when`. Throws std::invalid_argument if `when` is in the past,
+  // std::logic_error if the event is not pending.
   void move_owned(OwnedSlot owned, Time when);
   // Gives the slot back (cancelled if pending): the owner is done with it.
   void disown(OwnedSlot owned);
@@ -138,8 +141,9 @@ class Scheduler {
  private:
   // Events live in reusable slots (no allocation per event once the vectors have grown).
   // A slot's generation is odd while it holds an event and goes up by one when it is
-  // taken and when it is freed; an EventId is the slot's index + 1 and that odd
-  // generation, so a stale id never matches a reused slot. The queue holds only
+  // taken and when it is freed (an owned slot's: when it is armed, and when its event runs
+  // or is cancelled); an EventId is the slot's index + 1 and that odd generation, so a
+  // stale id never matches a reused slot. The queue holds only
   // {time, slot, generation}, sorted by time; an event goes in after every entry of its
   // time, so same-time events keep their scheduling order without a sequence number. A
   // cancelled event's entry is dropped when it comes to the front (its generation no
@@ -162,6 +166,8 @@ class Scheduler {
   };
 
   [[noreturn]] void refuse_past(const char* what, Time when) const;
+  // arm_owned() refused: `when` in the past, or the owned event pending already.
+  [[noreturn, gnu::cold]] void refuse_arm(const char* what, OwnedSlot owned, Time when) const;
   // A free slot's index (the slot is still on the free list).
   std::uint32_t free_slot_index() { return free_head_ != 0 ? free_head_ - 1 : new_slot(); }
   std::uint32_t new_slot();
@@ -278,8 +284,9 @@ class Scheduler {
   std::vector<Entry> scratch_;  // sort_near()'s (swapped with near_'s buffer)
   Time near_limit_ = -1;
   std::vector<Slot> slots_;
-  std::uint32_t free_head_ = 0;        // index + 1 of the first free slot, 0: none
-  std::vector<Action> owned_actions_;  // of the owned slots (Slot::next_free)
+  std::uint32_t free_head_ = 0;              // index + 1 of the first free slot, 0: none
+  std::vector<Action> owned_actions_;        // of the owned slots (Slot::next_free)
+  std::vector<std::uint32_t> free_actions_;  // owned_actions_ indices given back (disown)
 };
 
 }  // namespace sercon::sim
