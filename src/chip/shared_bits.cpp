@@ -19,11 +19,13 @@ constexpr std::size_t kMaxKeptBits = 64 * 1024;
 struct SharedBits::Pool {
   Node* free[kMaxPooled];  // [0, size): count 1, bits and decodes as last left
   std::size_t size;
-  bool gone;  // set at thread exit: what is released after that is freed
+  bool gone;          // set at thread exit: what is released after that is freed
+  bool cleanup_made;  // pool_cleanup_ made for this thread (arm_cleanup())
 };
 
 // Frees the pool's objects at thread exit. Made (and so registered) by the first object
-// the thread allocates: a pool holds only objects of its own thread.
+// the thread allocates or pools (arm_cleanup()): a thread may release objects
+// another made (a ring built on one thread and run on another).
 struct SharedBits::PoolCleanup {
   bool armed = false;
   ~PoolCleanup() {
@@ -42,8 +44,15 @@ SharedBits::Node* SharedBits::recycled_node() {
   return pool_.free[--pool_.size];
 }
 
-SharedBits::Node* SharedBits::allocate() {
+// Touching pool_cleanup_ makes it for this thread, and so registers its destructor: once,
+// out of line (its thread-local wrapper is a call).
+void SharedBits::arm_cleanup() {
   pool_cleanup_.armed = true;
+  pool_.cleanup_made = true;
+}
+
+SharedBits::Node* SharedBits::allocate() {
+  if (!pool_.cleanup_made) arm_cleanup();
   return new Node();
 }
 
@@ -64,6 +73,8 @@ void SharedBits::release(Node* n) noexcept {
   if (kRecycleBits && !pool_.gone && pool_.size < kMaxPooled && n->bits.size() <= kMaxKeptBits)
       [[likely]] {
     n->count = 1;
+    if (!pool_.cleanup_made) [[unlikely]]
+      arm_cleanup();
     pool_.free[pool_.size++] = n;
     return;
   }

@@ -381,8 +381,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // interest_->may_want_addressed(), asked again at every plan and after every report.
   bool addressed_wanted_ = true;
   // Never empty; front in force now (or earlier). It holds a handful of entries, and the
-  // front goes at most reads: a FrontDropVector moves none then (a deque of entries this
-  // size would allocate a block every second one).
+  // front goes at most reads: a FrontDropVector drops it in place and moves the rest only
+  // now and then (a std::vector moved them every time; a deque of entries this size would
+  // allocate a block every second one). An Entry& does not outlive the next append.
   sim::FrontDropVector<Entry, 16> timeline_;
   std::uint64_t next_serial_ = 1;
   // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach the

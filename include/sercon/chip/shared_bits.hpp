@@ -57,7 +57,8 @@ struct BurstDecodes {
   std::unique_ptr<const BurstDecode> whole;
   // The burst cut after a line bit (a telegram cut by the next change), per cut position.
   std::vector<std::pair<std::size_t, std::unique_ptr<const BurstDecode>>> prefixes;
-  // The whole decode of a released object, kept for seed_decode to fill again.
+  // A decode kept for filling again: fresh_node() moves a pooled object's whole decode
+  // here (encode_seeded() fills `whole` in place instead, line_decode_memo.cpp).
   std::unique_ptr<BurstDecode> spare;
 };
 
@@ -110,7 +111,8 @@ class SharedBits {
   static Node* fresh_node();  // counted from one, bits empty, no decodes (shared_bits.cpp)
   // Counted from one, bits and decodes as the last holder left them (or empty).
   static Node* recycled_node();
-  [[gnu::noinline]] static Node* allocate();  // a new object, on a pool's first use
+  [[gnu::noinline, gnu::cold]] static void arm_cleanup();  // this thread's pool is freed at exit
+  [[gnu::noinline]] static Node* allocate();               // a new object, on a pool's first use
   static void release(Node* node) noexcept;
   [[gnu::noinline, gnu::cold]] static void destroy(Node* node) noexcept;
   static void drop(Node* node) noexcept {

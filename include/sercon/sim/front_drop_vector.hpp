@@ -39,6 +39,9 @@ class FrontDropVector {
 
   void pop_back() { std::destroy_at(--last_); }
   void pop_front() { std::destroy_at(first_++); }
+  // Unlike std::vector's, `args` must not refer into this vector, and every push may move
+  // the elements (not only one that grows it): pointers and references into it do not
+  // outlive the next emplace_back().
   template <class... Args>
   T& emplace_back(Args&&... args) {
     if (last_ == end_) [[unlikely]]
