@@ -11,6 +11,11 @@
 // A burst at a bit period other than the receiver's is distorted: nothing is decoded (the
 // line monitor raises RDIST). A change that comes before a burst's end cuts it there: the
 // frame open at the cut ends as an error. docs/serial-and-ring.md, "Receiver".
+// Its members are defined in four files: serial_unit_receiver.cpp (the timeline and the
+// reports), serial_unit_lazy_hop.cpp (bursts coming in, lazy hops and their absorbing),
+// serial_unit_receiver_inline.hpp (the inline steps those two share) and
+// serial_unit_pass_through.hpp (the settle before an own telegram, inline in the
+// transmitter's send, with the repeater's and TxD's parts of it).
 #pragma once
 
 #include <algorithm>
