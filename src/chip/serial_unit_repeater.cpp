@@ -74,8 +74,8 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
   // Mostly (an own telegram where no lazy burst waits, the first slave's) the last one has
   // reached TxD's listener: the line and TxD's are set to it alone (settle).
   if (forwarded_.size() == 1 && settles(forwarded_.front().leaves)) {
-    const Forwarded& f = forwarded_.front();
-    return settle(f.leaves, f.reaching.bit_period, f.reaching.bits);  // drops forwarded_
+    Forwarded& f = forwarded_.front();
+    return settle(f.leaves, f.reaching.bit_period, std::move(f.reaching.bits));  // drops forwarded_
   }
   for (std::size_t i = 0; i < forwarded_.size(); ++i) {
     const Forwarded& f = forwarded_[i];

@@ -17,7 +17,7 @@ SerialTransmitter::SerialTransmitter(SerialUnit& unit)
     : unit_(unit), idle_(unit.chip(), Pin::IDLE, *this) {}
 
 void SerialTransmitter::reset() {
-  sent_.clear();
+  sent_since_reset_ = false;
   unit_.chip().set_output(Pin::IDLE, true);
   idle_.replan();
 }
@@ -53,32 +53,30 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   if (((fill_bits + 7) / 8) % 2 != 0) level_ = !level_;
   // With the receivers' decode, known from what was encoded (docs/serial-and-ring.md,
   // "Receiver").
-  const LineBurst burst{begin_at, period, encode_seeded(level_, address, data)};
-  // They end in order: the last one over (the usual case) means all are.
-  if (free_at_ <= now) {
-    sent_.drop_all();
-  } else {
-    while (!sent_.empty() && sent_.front().end <= now) sent_.pop_front();
-  }
+  LineBurst burst{begin_at, period, encode_seeded(level_, address, data)};
   free_at_ = burst.end();
-  sent_.push_back({burst.start, free_at_});
-  unit_.repeater().own(burst);
+  sent_since_reset_ = true;
+  unit_.repeater().own(std::move(burst));  // last use
   idle_.replan();
   return free_at_;
 }
 
 bool SerialTransmitter::level_at(sim::Time t) const {
-  for (std::size_t i = 0; i < sent_.size(); ++i) {
-    if (sent_[i].start <= t && t < sent_[i].end) return false;
+  if (!sent_since_reset_) return true;
+  const auto& sent = unit_.repeater().own_telegrams();
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    if (sent[i].start <= t && t < sent[i].end()) return false;
   }
   return true;
 }
 
 // Back to back telegrams keep IDLE low across the seam.
 sim::Time SerialTransmitter::next_change_after(sim::Time t) const {
+  if (!sent_since_reset_) return LazyPin::kNever;
+  const auto& sent = unit_.repeater().own_telegrams();
   const bool level = level_at(t);
-  for (std::size_t i = 0; i < sent_.size(); ++i) {
-    for (const sim::Time c : {sent_[i].start, sent_[i].end}) {
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    for (const sim::Time c : {sent[i].start, sent[i].end()}) {
       if (c > t && level_at(c) != level) return c;
     }
   }

@@ -77,7 +77,7 @@ class TxdOutputs final : public PassedBursts {
   inline void absorb(sim::Time start, sim::Time period, const SharedBits& bits);
   // absorb() of a burst that has reached the lone follower by now (so every burst before it
   // has too): the line is just it once pruned, set so at once. The repeater's settle().
-  inline void settle(sim::Time start, sim::Time period, const SharedBits& bits);
+  inline void settle(sim::Time start, sim::Time period, SharedBits&& bits);
   sim::Time last_since() const { return line_.back().since; }
   // PassedBursts: the bursts the lone follower took by pass_through (lazy hops, and the
   // bursts line_burst() hands it) and has not booked, booked there in order. Every burst

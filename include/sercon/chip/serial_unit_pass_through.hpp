@@ -102,19 +102,22 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
 }
 
 // Inline: at every own telegram (SerialTransmitter::send), a call less.
-inline void SerialRepeater::own(const LineBurst& burst) {
+inline void SerialRepeater::own(LineBurst&& telegram) {
   // absorb_passed(), its usual case inline: the lazy burst settles, which leaves nothing
   // forwarded and nothing for prune() to drop (settle()).
   if (!unit_.receiver().absorb_lazy_for_own()) {
     absorb_forwarded();
     prune();  // first: the telegram itself is not over (it begins at or after now)
   }
-  const sim::Time end = burst.end();
+  const sim::Time end = telegram.end();
   LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
-  kept.start = burst.start;
-  kept.bit_period = burst.bit_period;
-  kept.bits = burst.bits;
+  kept.start = telegram.start;
+  kept.bit_period = telegram.bit_period;
+  kept.bits = std::move(telegram.bits);  // no count up and down
   own_end_ = end;
+  // The telegram as kept: only own() pushes to own_, and the chain that line_burst() starts
+  // sends nothing, so the slot holds it throughout (a prune leaves a slot as it is).
+  const LineBurst& burst = kept;
   // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
   // without its walk. The telegram; then, when nothing of the background begins after its
   // start, the background segment in force where it ends (joined half-way unless it begins
@@ -169,19 +172,19 @@ inline void TxdOutputs::absorb(sim::Time start, sim::Time period, const SharedBi
 
 // A line (repeater, TxD) set to the burst from `since` alone: what a prune would leave once
 // the burst, appended, is in force. The front slot is written over (no append).
-template <class Line>
-inline void settle_burst(Line& line, sim::Time since, sim::Time period, const SharedBits& bits) {
+template <class Line, class Bits>
+inline void settle_burst(Line& line, sim::Time since, sim::Time period, Bits&& bits) {
   while (line.size() > 1) pop_front_segment(line);
   RxdSegment& s = line.front();  // the line is never empty (it holds what is in force)
   s.is_burst = true;
   s.condition = LineCondition::Idle;
   s.since = since;
   s.period = period;
-  s.bits = bits;
+  s.bits = std::forward<Bits>(bits);
 }
 
-inline void TxdOutputs::settle(sim::Time start, sim::Time period, const SharedBits& bits) {
-  settle_burst(line_, start, period, bits);
+inline void TxdOutputs::settle(sim::Time start, sim::Time period, SharedBits&& bits) {
+  settle_burst(line_, start, period, std::move(bits));
   unbooked_ = 1;  // it took the burst by pass_through; those before went unbooked (prune())
 }
 
@@ -194,11 +197,12 @@ inline bool SerialRepeater::settles(sim::Time leaves) const {
          background_.back().since < leaves && txd.last_since() < leaves;
 }
 
-inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, const SharedBits& bits) {
+// `bits` are taken: the last line gets them (no count up and down).
+inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, SharedBits&& bits) {
   forwarded_.drop_all();
   own_.drop_all();
-  settle_burst(background_, leaves, period, bits);
-  unit_.outputs().settle(leaves, period, bits);
+  settle_burst(background_, leaves, period, std::as_const(bits));
+  unit_.outputs().settle(leaves, period, std::move(bits));
 }
 
 // --- the receiver's lazy bursts absorbed (SerialReceiver::absorb_waiting, and inline for an
@@ -253,12 +257,13 @@ inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
 inline bool SerialReceiver::settle_lazy(sim::Time now) {
   prune_lazy(now);  // a burst over by now would only be pruned
   if (lazy_.size() != 1) return false;
-  const LazyBurst& lazy = lazy_.front();
+  LazyBurst& lazy = lazy_.front();
   SerialRepeater& repeater = unit_.repeater();
   if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
       repeater.settles(lazy.leaves) && all_done_with(now)) {
     take_in_front(lazy, lazy.reports_over < now);
-    repeater.settle(lazy.leaves, lazy.reaching.bit_period, lazy.reaching.bits);
+    // Its bits go to TxD's line: the slot is let go at once (drop_all).
+    repeater.settle(lazy.leaves, lazy.reaching.bit_period, std::move(lazy.reaching.bits));
     lazy_.drop_all();
     return true;
   }

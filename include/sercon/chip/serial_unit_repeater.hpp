@@ -28,8 +28,8 @@ class SerialRepeater {
   void release();
   // RxD announced `segment` (segment.since >= now).
   inline void input(const RxdSegment& segment);  // serial_unit_pass_through.hpp
-  // The transmitter announced an own telegram (burst.start >= now).
-  [[gnu::always_inline]] inline void own(const LineBurst& burst);  // serial_unit_pass_through.hpp
+  // The transmitter announced an own telegram (burst.start >= now); its bits are taken.
+  [[gnu::always_inline]] inline void own(LineBurst&& telegram);  // serial_unit_pass_through.hpp
   // REPON or the bit rate changed.
   void refresh();
 
@@ -46,8 +46,7 @@ class SerialRepeater {
   // whether the line and TxD's would then hold just it once pruned (settles), and so
   // set them (settle). Inline (serial_unit_pass_through.hpp).
   inline bool settles(sim::Time leaves) const;
-  [[gnu::always_inline]] inline void settle(sim::Time leaves, sim::Time period,
-                                            const SharedBits& bits);
+  [[gnu::always_inline]] inline void settle(sim::Time leaves, sim::Time period, SharedBits&& bits);
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
   inline void absorb_passed();  // serial_unit_pass_through.hpp
@@ -58,6 +57,9 @@ class SerialRepeater {
     forward_unbooked_ = on;
   }
 
+  // Own telegrams in time order: those not yet over, perhaps after some over before now
+  // (no time at or after now falls in those). The transmitter's IDLE asks them.
+  const sim::CircularQueue<LineBurst>& own_telegrams() const { return own_; }
   // When something that reaches RxD at `t` leaves on TxD.
   inline sim::Time forward_time(sim::Time t) const;  // serial_unit_pass_through.hpp
   bool on() const { return repon_; }

@@ -10,7 +10,6 @@
 
 #include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
-#include "sercon/sim/circular_queue.hpp"
 
 namespace sercon::chip {
 
@@ -35,15 +34,12 @@ class SerialTransmitter final : private LazyPin::Source {
   sim::Time next_change_after(sim::Time t) const override;
 
   SerialUnit& unit_;
-  // When an own telegram is on the line: all IDLE needs (not its bits, which would be one
-  // more count on the bits object per telegram).
-  struct OnLine {
-    sim::Time start = 0;
-    sim::Time end = 0;
-  };
-  sim::CircularQueue<OnLine> sent_;  // own telegrams not yet over, in time order
-  sim::Time free_at_ = 0;            // end of the last telegram (or release)
-  bool level_ = true;                // line level at free_at_ (light = true)
+  // The own telegrams are the repeater's (SerialRepeater::own_telegrams: one queue, kept
+  // there). False from a reset to the next telegram: SerialUnit::reset resets the repeater
+  // after this, so its queue still holds them while this reset replans IDLE.
+  bool sent_since_reset_ = false;
+  sim::Time free_at_ = 0;  // end of the last telegram (or release)
+  bool level_ = true;      // line level at free_at_ (light = true)
   LazyPin idle_;
 };
 
