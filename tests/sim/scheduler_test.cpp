@@ -436,6 +436,24 @@ Time run_step(Draws& draws) {
   return draws.below(10) == 0 ? 150 * kMicrosecond : static_cast<Time>(draws.below(4)) * 10;
 }
 
+// Up to four events that only note when they ran, each `delay()` from now.
+template <class Delay>
+void add_noting_events(Scheduler& s, Seen& seen, Draws& draws, int& label, Delay delay) {
+  for (std::uint32_t i = draws.below(5); i > 0; --i) {
+    const Time when = s.now() + delay();
+    const int mine = label++;
+    s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
+  }
+}
+
+// `run(seed, owned)` for 50 seeds: with the owned slot and through EventIds, the same.
+template <class Run>
+void expect_twins_agree(Run run, std::uint32_t seed_step) {
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
+    EXPECT_EQ(run(seed * seed_step, true), run(seed * seed_step, false)) << "seed " << seed;
+  }
+}
+
 // arm_owned() and cancel_owned(): the owner armed from outside and again from its action,
 // cancelled, among other events.
 Seen run_owned_twin(std::uint32_t seed, bool owned) {
@@ -445,11 +463,8 @@ Seen run_owned_twin(std::uint32_t seed, bool owned) {
   TwinOwner owner(s, seen, draws, owned, TwinOwner::Again::Later);
   int label = 0;
   for (int round = 0; round < 200; ++round) {
-    for (std::uint32_t i = draws.below(5); i > 0; --i) {
-      const Time when = s.now() + static_cast<Time>(draws.below(8)) * 10;
-      const int mine = label++;
-      s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
-    }
+    add_noting_events(s, seen, draws, label,
+                      [&draws] { return static_cast<Time>(draws.below(8)) * 10; });
     const std::uint32_t what = draws.below(4);
     if (what == 0 && !owner.armed) owner.arm(s.now() + static_cast<Time>(draws.below(8)) * 10);
     if (what == 1 && owner.armed) owner.cancel();
@@ -460,10 +475,7 @@ Seen run_owned_twin(std::uint32_t seed, bool owned) {
 }
 
 TEST(Scheduler, AnOwnedSlotRunsAsAtWouldThroughRandomSteps) {
-  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
-    EXPECT_EQ(run_owned_twin(seed * 7919u, true), run_owned_twin(seed * 7919u, false))
-        << "seed " << seed;
-  }
+  expect_twins_agree(run_owned_twin, 7919u);
 }
 
 // arm_owned_now() against at(now()): the owned event armed for now from other events, from
@@ -502,10 +514,7 @@ Seen run_owned_now_twin(std::uint32_t seed, bool owned) {
 }
 
 TEST(Scheduler, AnOwnedSlotArmedForNowRunsAsAtWouldThroughRandomSteps) {
-  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
-    EXPECT_EQ(run_owned_now_twin(seed * 104729u, true), run_owned_now_twin(seed * 104729u, false))
-        << "seed " << seed;
-  }
+  expect_twins_agree(run_owned_now_twin, 104729u);
 }
 
 // arm_owned() with an action per arm and move_owned() against at() and move(): the owned
@@ -518,11 +527,7 @@ Seen run_owned_action_twin(std::uint32_t seed, bool owned) {
   TwinOwner owner(s, seen, draws, owned, TwinOwner::Again::LaterEitherAction);
   int label = 0;
   for (int round = 0; round < 300; ++round) {
-    for (std::uint32_t i = draws.below(5); i > 0; --i) {
-      const Time when = s.now() + near_or_far(draws);
-      const int mine = label++;
-      s.at(when, [&s, &seen, mine] { seen.emplace_back(s.now(), mine); });
-    }
+    add_noting_events(s, seen, draws, label, [&draws] { return near_or_far(draws); });
     const std::uint32_t what = draws.below(5);
     if (what == 0 && !owner.armed) owner.arm(s.now() + near_or_far(draws), draws.below(2) == 1);
     if (what == 1 && owner.armed) owner.cancel();
@@ -534,11 +539,7 @@ Seen run_owned_action_twin(std::uint32_t seed, bool owned) {
 }
 
 TEST(Scheduler, AnOwnedSlotWithAnActionPerArmMovedRunsAsAtAndMoveWouldThroughRandomSteps) {
-  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
-    EXPECT_EQ(run_owned_action_twin(seed * 15485863u, true),
-              run_owned_action_twin(seed * 15485863u, false))
-        << "seed " << seed;
-  }
+  expect_twins_agree(run_owned_action_twin, 15485863u);
 }
 
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
