@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string_view>
+#include <utility>
 
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/line_decode_memo.hpp"
@@ -64,17 +65,23 @@ inline void drop_replaced_by(Line& line, sim::Time now) {
   while (line.size() > 1 && line[1].since <= now) pop_front_segment(line);
 }
 
+// `s` written over with the burst from `since` (what RxdSegment::of() makes of it, in place:
+// the slot's storage kept): a line's new or settled segment, a receiver's settled entry.
+template <class Bits>
+inline void write_burst(RxdSegment& s, sim::Time since, sim::Time period, Bits&& bits) {
+  s.is_burst = true;
+  s.condition = LineCondition::Idle;
+  s.since = since;
+  s.period = period;
+  s.bits = std::forward<Bits>(bits);
+}
+
 // Appends `burst` to a line (repeater, TxD) as a segment from `since`, built in its slot
 // rather than copied in: at every hop. What it needs of the burst is taken first (the bits
 // by value): the burst may live in storage the append moves (a fibre's history, say).
 template <class Line>
 inline void append_burst(Line& line, sim::Time since, sim::Time period, SharedBits bits) {
-  RxdSegment& s = line.emplace_back();
-  s.is_burst = true;
-  s.condition = LineCondition::Idle;
-  s.since = since;
-  s.period = period;
-  s.bits = std::move(bits);
+  write_burst(line.emplace_back(), since, period, std::move(bits));
 }
 template <class Line>
 inline void append_burst(Line& line, const LineBurst& burst, sim::Time since) {

@@ -175,12 +175,8 @@ inline void TxdOutputs::absorb(sim::Time start, sim::Time period, const SharedBi
 template <class Line, class Bits>
 inline void settle_burst(Line& line, sim::Time since, sim::Time period, Bits&& bits) {
   while (line.size() > 1) pop_front_segment(line);
-  RxdSegment& s = line.front();  // the line is never empty (it holds what is in force)
-  s.is_burst = true;
-  s.condition = LineCondition::Idle;
-  s.since = since;
-  s.period = period;
-  s.bits = std::forward<Bits>(bits);
+  // The line is never empty (it holds what is in force).
+  write_burst(line.front(), since, period, std::forward<Bits>(bits));
 }
 
 inline void TxdOutputs::settle(sim::Time start, sim::Time period, SharedBits&& bits) {
@@ -234,13 +230,8 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
 inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
   while (holds_more_than(1)) timeline_.pop_back();
   Entry& e = timeline_.front();
-  RxdSegment& s = e.segment;
-  s.is_burst = true;
-  s.condition = LineCondition::Idle;
-  s.since = lazy.arrived;
-  s.period = lazy.reaching.bit_period;
-  s.bits = lazy.reaching.bits;
-  e.cut = lazy.ends;  // s.burst_end()
+  write_burst(e.segment, lazy.arrived, lazy.reaching.bit_period, lazy.reaching.bits);
+  e.cut = lazy.ends;  // the segment's burst_end()
   e.serial = next_serial_++;
   if (over) {
     e.decode = nullptr;
