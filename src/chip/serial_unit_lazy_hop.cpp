@@ -25,7 +25,6 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
   check(burst);  // those handed on by pass_through have bits and a bit period (line.hpp)
   SerialReceiver* at = this;
   const LineBurst* b = &burst;
-  LineBurst hold;  // a copy of what a node hands itself (its TxD back to its own RxD)
   for (;;) {
     LineListener* next = nullptr;
     const LineBurst* out = nullptr;
@@ -35,21 +34,20 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     }
     ++chain_depth;
     ++links.taken;
-    // `out` is the node's lazy burst: a copy for whatever may change its lazy bursts before
-    // it has read them (the node itself; a listener that is not a receiver may call out).
     SerialReceiver* const r = next->receiver();
-    if (r == nullptr) {
-      hold = *out;
-      return next->line_burst(hold);
-    }
-    if (r == at) {
-      hold = *out;
-      b = &hold;
-    } else {
-      b = out;
-    }
+    if (r == nullptr || r == at) [[unlikely]]
+      return hand_copy(*next, *out);
+    b = out;  // the node's lazy burst, read by the next one before anything changes it
     at = r;
   }
+}
+
+// `out` is the node's lazy burst: a copy for whatever may change its lazy bursts before it
+// has read them (the node itself; a listener that is not a receiver may call out). Out of
+// the loop, so the usual hop keeps no copy on its stack.
+void SerialReceiver::hand_copy(LineListener& next, const LineBurst& out) {
+  const LineBurst copy = out;
+  next.line_burst(copy);
 }
 
 void SerialReceiver::bad_burst(const LineBurst& burst) {
@@ -139,7 +137,7 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   // taken back if the listener refuses) and handed on.
   LazyBurst& kept = lazy_.reuse_back();
   kept.reaching.bit_period = b.bit_period;
-  kept.reaching.bits = b.bits;
+  kept.reaching.bits.assign_held(b.bits);  // check()ed: it has bits
   kept.arrived = b.start;
   kept.leaves = leaves;
   kept.ends = b.start + static_cast<sim::Time>(b.bits->size()) * b.bit_period;
@@ -147,10 +145,14 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   // Set by the listener; set here too, so the entry is whole even if a listener throws.
   kept.reaching.start = leaves;
   TxdOutputs& txd = unit_.outputs();
-  if (!txd.follower_takes_into(leaves, kept.reaching, next)) {
+  // Through a local: the slow path's call takes its address, which kept the loop's `next`
+  // on the stack.
+  LineListener* to = nullptr;
+  if (!txd.follower_takes_into(leaves, kept.reaching, to)) {
     lazy_.pop_back();
     return false;
   }
+  next = to;
   if (!after_lazy) txd.set_follower_delay(kept.reaching.start - leaves);  // as line_burst()
   out = &kept.reaching;
   ++lazy_hops_taken_;

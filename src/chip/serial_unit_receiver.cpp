@@ -518,10 +518,6 @@ inline bool SerialReceiver::plan_telegram_after_start(const Report& fired) {
 
 // --- line monitor ---------------------------------------------------------------------------
 
-bool SerialReceiver::good(const RxdSegment& s) const {
-  return s.has_edges() && s.period == unit_.bit_period();
-}
-
 // The monitor hears a change only when it leaves or enters a bad signal: between good
 // signals (edges at the receiver's rate) its status cannot change.
 void SerialReceiver::plan_monitor() {

@@ -229,6 +229,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // true: taken lazily; the caller delivers `out` to `next` (LineListener::pass_through).
   // Inline in line_burst(), as drop_lazy_over() in it: a call less per hop of a lazy chain.
   inline bool try_lazy_hop(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
+  [[gnu::cold, gnu::noinline]] static void hand_copy(LineListener& next, const LineBurst& out);
   // std::invalid_argument for a burst without bits or a bit period.
   void check(const LineBurst& burst) {
     if (!burst.bits || burst.bit_period <= 0) [[unlikely]]
@@ -369,7 +370,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   inline bool start_report_past(const Entry& e, const FrameState& st, sim::Time now) const;
   void plan_monitor();
   void fire_monitor();
-  bool good(const RxdSegment& s) const;  // edges at the receiver's rate
+  inline bool good(const RxdSegment& s) const;  // edges at the receiver's rate
 
   // LazyPin::Source: RECACT (true = inside a telegram); the pin is its inverse.
   bool recact_at(sim::Time t) const;
@@ -393,8 +394,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::uint64_t next_serial_ = 1;
   // Bursts passed on by lazy hops and not yet absorbed, in time order: as they reach the
   // next receiver (the burst the hop handed on, so it needs no copy of its own), and when
-  // they reached RxD and left TxD.
-  struct LazyBurst {
+  // they reached RxD and left TxD. A slot of 64 bytes: every hop finds its slot by a shift
+  // (at 56, by three instructions).
+  struct alignas(64) LazyBurst {
     LineBurst reaching;  // the next receiver (the fibre books it only when it reads its history)
     sim::Time arrived = 0;
     sim::Time leaves = 0;

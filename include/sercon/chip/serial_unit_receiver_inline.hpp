@@ -43,6 +43,11 @@ inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
   return mclk_.nth_edge_after(t + half_bits, kDetectionEdges);
 }
 
+// Edges at the receiver's rate (a good signal). Inline: asked at a node's first lazy hop.
+inline bool SerialReceiver::good(const RxdSegment& s) const {
+  return s.has_edges() && s.period == unit_.bit_period();
+}
+
 // A new last entry (the caller has dropped what it supersedes), not yet taken.
 inline SerialReceiver::Entry& SerialReceiver::append(RxdSegment&& segment) {
   const sim::Time cut = segment.is_burst ? segment.burst_end() : segment.since;

@@ -80,6 +80,13 @@ class SharedBits {
     drop(std::exchange(node_, n));
     return *this;
   }
+  // operator=() of a handle known to hold bits (a lazy hop's burst, checked where it came
+  // in): counted up first, so the same bits again come out even without the comparison.
+  void assign_held(const SharedBits& other) noexcept {
+    Node* const n = other.node_;
+    ++n->count;
+    drop(std::exchange(node_, n));
+  }
   SharedBits& operator=(SharedBits&& other) noexcept {
     Node* const n = std::exchange(other.node_, nullptr);  // first: `other` may be *this
     drop(std::exchange(node_, n));
