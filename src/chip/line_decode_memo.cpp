@@ -86,7 +86,8 @@ void move_head_and_tail(std::uint8_t* to, const std::uint8_t* from, std::size_t 
 
 // `to` made a copy of `from`, in the storage it has (a recycled decode, shared_bits.hpp): no
 // library call for a telegram of up to 16 bytes unless `to` must grow.
-void copy_bytes(std::vector<std::uint8_t>& to, std::span<const std::uint8_t> from) {
+[[gnu::always_inline]] inline void copy_bytes(std::vector<std::uint8_t>& to,
+                                              std::span<const std::uint8_t> from) {
   const std::size_t n = from.size();
   if (n > to.size()) [[unlikely]] {
     to.assign(from.begin(), from.end());

@@ -202,7 +202,8 @@ template <class Full>
 }
 
 // Address, data and FCS (low byte first) stuffed into `d` (each full word to `full`); the
-// FCS is worked out first, on words of the address and data, and returned.
+// FCS is worked out on the way, on the words as they are stuffed (one load each), and
+// returned.
 template <class Full>
 [[gnu::always_inline]] inline std::uint16_t stuff_telegram(Decoded& d, std::uint8_t address,
                                                            std::span<const std::uint8_t> data,
@@ -210,13 +211,7 @@ template <class Full>
   const std::uint8_t* p = data.data();
   std::size_t n = data.size();
   Fcs16 fcs;
-  const std::size_t first = n < 7 ? n : 7;  // with the address
-  fcs.update_word(address | load_le(p, first) << 8, static_cast<unsigned>(first + 1));
-  for (std::size_t i = first; i < n; i += 8) {
-    const std::size_t k = n - i < 8 ? n - i : 8;
-    fcs.update_word(k == 8 ? load_le8(p + i) : load_le(p + i, k), static_cast<unsigned>(k));
-  }
-  const std::uint16_t v = fcs.value();
+  fcs.update_word(address, 1);
   // The address by the table (255, an MST's or MDT's, has five 1s, which would send a word
   // byte by byte), then the data 8 bytes at a time, the last 6 or fewer with the FCS.
   const std::uint32_t e = kStuff[d.run * 256 + address];
@@ -224,11 +219,16 @@ template <class Full>
   d.run = e >> 14;
   while (n > 6) {
     const std::size_t k = n < 8 ? n : 8;
-    stuff_word(d, k == 8 ? load_le8(p) : load_le(p, k), static_cast<unsigned>(k), full);
+    const std::uint64_t w = k == 8 ? load_le8(p) : load_le(p, k);
+    fcs.update_word(w, static_cast<unsigned>(k));
+    stuff_word(d, w, static_cast<unsigned>(k), full);
     p += k;
     n -= k;
   }
-  stuff_word(d, load_le(p, n) | std::uint64_t{v} << (8 * n), static_cast<unsigned>(n + 2), full);
+  const std::uint64_t tail = load_le(p, n);
+  if (n != 0) fcs.update_word(tail, static_cast<unsigned>(n));
+  const std::uint16_t v = fcs.value();
+  stuff_word(d, tail | std::uint64_t{v} << (8 * n), static_cast<unsigned>(n + 2), full);
   return v;
 }
 
