@@ -106,13 +106,14 @@ const RxdSegment& TxdOutputs::line_now() const {
 }
 
 LineCondition TxdOutputs::line_condition_now(sim::Time* period) const {
-  unit_.repeater().absorb_passed();
+  unit_.repeater().absorb_passed();  // the own telegram left out of the line first
   const RxdSegment& s = line_now();
   *period = s.period;
   return s.is_burst ? LineCondition::Idle : s.condition;
 }
 
 void TxdOutputs::change_condition(sim::Time at, LineCondition condition, sim::Time period) {
+  book_own();
   prune();
   const bool dropped = drop_from(at);
   if (unbooked_ > 0) book_unbooked();  // booked before what the follower is told now
@@ -130,8 +131,18 @@ void TxdOutputs::change_condition(sim::Time at, LineCondition condition, sim::Ti
 }
 
 void TxdOutputs::book_all() {
-  unit_.repeater().absorb_passed();  // the bursts passed on into the line, unbooked
+  // The bursts passed on into the line, unbooked (the own telegram left out of it first).
+  unit_.repeater().absorb_passed();
   if (unbooked_ > 0) book_unbooked();
+}
+
+// Where line_burst() would have put it, with nothing to prune or drop before it (own_burst):
+// nothing has changed the line since (every way in books it first).
+void TxdOutputs::book_own_now() {
+  const LineBurst& own = *own_unbooked_;
+  own_unbooked_ = nullptr;
+  append_burst(line_, own, own.start);
+  ++unbooked_;
 }
 
 void TxdOutputs::book_unbooked() {

@@ -82,7 +82,8 @@ enum class Action {
 };
 constexpr int kActions = 19;
 
-std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
+// `own_at_bits` >= 0: the node sends a telegram of its own then (before the action).
+std::vector<std::string> one_node(Action action, bool lazy, Time when_bits, Time own_at_bits = -1) {
   RepeatingChip node(lazy);
   sim::Scheduler& s = node.s;
   chip::Chip& c = node.c;
@@ -100,6 +101,11 @@ std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
     });
   }
   const Time base = node.idle_then_telegrams(20, 150, 100);
+  if (own_at_bits >= 0) {
+    s.at(base + own_at_bits * kBit, [&] {
+      u.send(u.next_bit_edge(s.now() + 5 * kBit), 0x0A, std::vector<std::uint8_t>{3, 4, 5});
+    });
+  }
   s.at(base + when_bits * kBit, [&] {
     const auto flip = [&c](std::uint8_t a, std::uint16_t m) {
       c.reg_write(a, static_cast<std::uint16_t>(c.regs().value(a) ^ m));
@@ -134,8 +140,9 @@ std::vector<std::string> one_node(Action action, bool lazy, Time when_bits) {
       case Action::ReponOff:
         flip(0x01, 1u << 3);
         break;
-      case Action::OwnTelegram:
-        u.send(u.next_bit_edge(s.now() + 5 * kBit), 0x09, std::vector<std::uint8_t>{1, 2});
+      case Action::OwnTelegram:  // back to back after one of its own still going
+        u.send(std::max(u.next_bit_edge(s.now() + 5 * kBit), u.transmit_free_at()), 0x09,
+               std::vector<std::uint8_t>{1, 2});
         break;
       case Action::Disconnect:
         u.disconnect_txd(1);
@@ -197,6 +204,51 @@ TEST_P(LazyHopsOneNode, TheSameWhateverHappensWhileBurstsWait) {
 INSTANTIATE_TEST_SUITE_P(Actions, LazyHopsOneNode,
                          ::testing::Combine(::testing::Range(0, kActions),
                                             ::testing::Values(-5, 30, 75, 149, 160, 1000, 1040)));
+
+// After the 20 telegrams the node sends one of its own, which TxD hands to the fibre and
+// keeps out of its line until something looks (TxdOutputs::own_burst, book_own), and then
+// each action comes: before the telegram begins, at its start, under it, at and after its
+// end, late on.
+class LazyHopsOwnTelegram : public ::testing::TestWithParam<std::tuple<int, int>> {};
+
+TEST_P(LazyHopsOwnTelegram, TheSameWhateverHappensAfterIt) {
+  const auto [action, after] = GetParam();
+  constexpr Time kOwnAt = 3000;  // bits after the first telegram: the last one has passed
+  expect_same(one_node(static_cast<Action>(action), true, kOwnAt + 5 + after, kOwnAt),
+              one_node(static_cast<Action>(action), false, kOwnAt + 5 + after, kOwnAt));
+}
+
+INSTANTIATE_TEST_SUITE_P(Actions, LazyHopsOwnTelegram,
+                         ::testing::Combine(::testing::Range(0, kActions),
+                                            ::testing::Values(-4, -1, 0, 3, 20, 48, 56, 70, 200)));
+
+// An own telegram while RxD carries idle fill at another rate (4 Mbit/s): TxD hands the
+// telegram to the fibre unbooked (TxdOutputs::own_burst), and the repeated fill after it
+// is a change the line takes only after the telegram. The same with lazy hops off.
+std::vector<std::string> own_over_other_rate(bool lazy) {
+  RepeatingChip node(lazy);
+  sim::Scheduler& s = node.s;
+  testing::Recorder out(s);
+  Fibre f(s, 10.0);
+  node.repeat_into(f, out);
+  s.run_until(1000 * kBit);
+  node.u.rxd().line_condition(s.now(), LineCondition::Idle, 4 * kBit);
+  s.run_until(s.now() + 100 * kBit);
+  node.u.send(node.u.next_bit_edge(s.now() + 5 * kBit), 0x0A, std::vector<std::uint8_t>{3, 4});
+  s.run_until(s.now() + 30 * kBit);
+  f.break_now();  // the fibre reads its history
+  f.restore_at(s.now() + 10 * kBit);
+  s.run_until(s.now() + 400 * kBit);
+  std::vector<std::string> trace;
+  for (const auto& e : out.events) trace.push_back(event_text(e));
+  return trace;
+}
+
+TEST(LazyHops, AnOwnTelegramOverFillAtAnotherRateIsTheSame) {
+  const std::vector<std::string> lazy = own_over_other_rate(true);
+  expect_same(lazy, own_over_other_rate(false));
+  EXPECT_GE(lazy.size(), 3u);  // the fill, the telegram, the fill after it
+}
 
 // A node whose TxD1 fibre comes back to its own RxD, repeater on (a ring of one). A burst
 // that takes the full path reaches the same RxD again from inside the fibre's history;

@@ -38,6 +38,11 @@ class TxdOutputs final : public PassedBursts {
   void line_condition(sim::Time at, LineCondition condition, sim::Time period) {
     // Inline: the idle fill after each own telegram is such a no-op. What prune() would
     // drop goes at the next change (it never touches the last segment).
+    if (own_unbooked_ != nullptr) {  // the line's last segment: the test below on it
+      const LineBurst& own = *own_unbooked_;
+      if (at >= own.end() && condition == LineCondition::Idle && own.bit_period == period) return;
+      book_own();
+    }
     const RxdSegment& last = line_.back();
     if (last.since <= at) {
       const bool in_burst = last.is_burst && at < last.burst_end();
@@ -48,6 +53,18 @@ class TxdOutputs final : public PassedBursts {
   }
   // serial_unit_pass_through.hpp. Always inline: GCC made it a call at every own telegram.
   [[gnu::always_inline]] inline void line_burst(const LineBurst& burst);
+  // line_burst() of the repeater's own telegram `own` (an element of its queue of own
+  // telegrams, kept there until the next one is pushed): when nothing is to be pruned or
+  // dropped before it, the line is lit and the lone follower is a plain link that takes it,
+  // the follower gets it unbooked and the line takes it only when something looks
+  // (book_own), as it takes a lazy burst. Else line_burst(). Inline
+  // (serial_unit_pass_through.hpp).
+  [[gnu::always_inline]] inline void own_burst(const LineBurst& own);
+  // The own telegram own_burst() left out of the line, into it (first: before anything
+  // reads or changes the line). Before the repeater pushes another own telegram too.
+  void book_own() {
+    if (own_unbooked_ != nullptr) book_own_now();
+  }
 
   // Lazy hops (docs/serial-and-ring.md): when exactly one listener follows the line and the
   // burst is announced after everything before it (would_pass), the listener may take it and
@@ -78,7 +95,9 @@ class TxdOutputs final : public PassedBursts {
   // absorb() of a burst that has reached the lone follower by now (so every burst before it
   // has too): the line is just it once pruned, set so at once. The repeater's settle().
   inline void settle(sim::Time start, sim::Time period, SharedBits&& bits);
-  sim::Time last_since() const { return line_.back().since; }
+  sim::Time last_since() const {
+    return own_unbooked_ != nullptr ? own_unbooked_->start : line_.back().since;
+  }
   // PassedBursts: the bursts the lone follower took by pass_through (lazy hops, and the
   // bursts line_burst() hands it) and has not booked, booked there in order. Every burst
   // leaving TxD reaches that listener this way when it takes it, so a plain fibre books
@@ -87,6 +106,7 @@ class TxdOutputs final : public PassedBursts {
   // line_burst() hands bursts to the lone follower unbooked (above): on unless lazy hops are
   // switched off, so that off is the full path at the fibre too (the tests compare both).
   void set_pass_unbooked(bool on) {
+    book_own();
     if (!on && unbooked_ > 0) book_unbooked();
     pass_unbooked_ = on;
   }
@@ -157,6 +177,7 @@ class TxdOutputs final : public PassedBursts {
   }
   // The last unbooked_ segments of the line into the lone follower (book_passed).
   [[gnu::noinline]] void book_unbooked();
+  void book_own_now();
   void tell_followers(const LineBurst& burst);
   // follower_takes_into() through a listener without a plain link: by its pass_through.
   bool follower_takes_copy(sim::Time leaves, LineBurst& into, LineListener*& next);
@@ -176,6 +197,11 @@ class TxdOutputs final : public PassedBursts {
   // and has not booked; they reach it follower_delay_ after they leave.
   std::size_t unbooked_ = 0;
   bool pass_unbooked_ = true;
+  // An own telegram the lone follower took unbooked that the line has not taken yet
+  // (own_burst): after line_'s last segment, and then the line's last segment. Points into
+  // the repeater's queue of own telegrams, which keeps it until it pushes the next one
+  // (book_own() before that).
+  const LineBurst* own_unbooked_ = nullptr;
   sim::Time follower_delay_ = 0;
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).

@@ -44,6 +44,7 @@ inline void SerialRepeater::input(const RxdSegment& segment) {
 // The lone follower (a plain fibre) takes the burst by pass_through when it can, and this
 // delivers it to the listener behind: the follower books it only when asked (book_all).
 inline void TxdOutputs::line_burst(const LineBurst& burst) {
+  book_own();
   prune();
   const bool dropped = drop_from(burst.start);
   LineListener* const only = lone_follower_;
@@ -66,6 +67,24 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   }
   // The back is the burst: the line lights up only if it was dark before.
   if (dropped || line_.size() < 2 || is_dark(line_[line_.size() - 2])) plan_pins();
+}
+
+inline void TxdOutputs::own_burst(const LineBurst& own) {
+  // What line_burst() would do here, without its prune, drop and plan of the pins (a line of
+  // one lit segment before the telegram) or keeping it: the own telegram stays in the
+  // repeater's queue until the line takes it (book_own).
+  if (own_unbooked_ == nullptr && pass_unbooked_ && lone_link_ != nullptr && line_.size() == 1) {
+    const RxdSegment& last = line_.back();
+    LineListener* next = nullptr;
+    const LineBurst* out = nullptr;
+    if (last.since < own.start && !is_dark(last) &&
+        lone_link_->pass_checked(own, *this, next, out)) {
+      follower_delay_ = out->start - own.start;
+      own_unbooked_ = &own;  // first: what `next` is told may come back round to this line
+      return next->line_burst(*out);
+    }
+  }
+  line_burst(own);
 }
 
 // A read hop's burst handed on unbooked when the repeater's and TxD's conditions allow
@@ -110,6 +129,9 @@ inline void SerialRepeater::own(LineBurst&& telegram) {
     prune();  // first: the telegram itself is not over (it begins at or after now)
   }
   const sim::Time end = telegram.end();
+  // TxD's line takes the last own telegram before its slot may be reused below (mostly the
+  // settle has dropped it: over).
+  unit_.outputs().book_own();
   LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
   kept.start = telegram.start;
   kept.bit_period = telegram.bit_period;
@@ -123,7 +145,7 @@ inline void SerialRepeater::own(LineBurst&& telegram) {
   // start, the background segment in force where it ends (joined half-way unless it begins
   // there); else emit_from() from its end, as emit_from(burst.start) goes on.
   if (own_.size() == 1 && !background_.empty()) {
-    unit_.outputs().line_burst(burst);
+    unit_.outputs().own_burst(burst);
     if (own_.size() == 1 && background_.back().since <= burst.start) {
       // Joined half-way (it begins before the telegram's end): emit_background's last case,
       // here without the call (mostly the idle fill the line is in anyway, a no-op).
@@ -138,6 +160,8 @@ inline void SerialRepeater::own(LineBurst&& telegram) {
 }
 
 inline void SerialRepeater::absorb_passed() {
+  // The own telegram TxD's line left out first (it came before everything passed on since).
+  unit_.outputs().book_own();
   unit_.receiver().absorb_lazy();  // its repeater stage absorbs forwarded_ first
   absorb_forwarded();
 }
@@ -164,6 +188,7 @@ inline void SerialRepeater::book(sim::Time leaves, sim::Time period, const Share
 }
 
 inline void TxdOutputs::absorb(sim::Time start, sim::Time period, const SharedBits& bits) {
+  book_own();
   expect_absorbed_in_order("TxD", line_.back().since, start);
   prune();
   append_burst(line_, start, period, bits);
@@ -180,6 +205,7 @@ inline void settle_burst(Line& line, sim::Time since, sim::Time period, Bits&& b
 }
 
 inline void TxdOutputs::settle(sim::Time start, sim::Time period, SharedBits&& bits) {
+  own_unbooked_ = nullptr;  // before the burst (last_since()): over, as settle_burst drops it
   settle_burst(line_, start, period, std::move(bits));
   unbooked_ = 1;  // it took the burst by pass_through; those before went unbooked (prune())
 }
@@ -272,6 +298,7 @@ inline bool TxdOutputs::would_pass(sim::Time leaves) const {
   // Nothing announced at or after it to drop, and no change between dark and light (the
   // pins' plan stays as it is): what line_burst() would do is only to keep it.
   if (lone_follower_ == nullptr) return false;
+  if (own_unbooked_ != nullptr) return own_unbooked_->start < leaves;  // the last segment, lit
   const RxdSegment& last = line_.back();
   return last.since < leaves && (last.is_burst || last.condition != LineCondition::Dark);
 }
