@@ -2,6 +2,7 @@
 
 #include "sercon/chip/required_unit.hpp"
 #include "sercon/chip/serial_unit_transmitter.hpp"
+#include "sercon/chip/telegram_list_walk.hpp"
 
 namespace sercon::chip {
 namespace {

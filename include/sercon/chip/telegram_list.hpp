@@ -53,8 +53,8 @@ class ListClient {
   virtual void list_moved() = 0;
 };
 
-class TelegramList {
- public:
+// The walk's names that do not depend on its client.
+struct TelegramListTypes {
   // Half-width of the TCHK window in µs (project decision).
   static constexpr std::int64_t kWindowUs = 2;
 
@@ -63,15 +63,25 @@ class TelegramList {
     OtherAddress,  // in the window of an ACHK = 1 header, but another address
     Accepted,
   };
+};
 
-  TelegramList(TimeBase& time_base, TelegramRam& ram, ListClient& client);
-  ~TelegramList();
-  TelegramList(const TelegramList&) = delete;
-  TelegramList& operator=(const TelegramList&) = delete;
+// `Client` is a ListClient: the list calls it as that type, so a client class that is final
+// (the telegram processor) has its handlers called directly and inlined into the walk's
+// events, one function per event; TelegramList calls any ListClient through its virtual
+// functions. The member functions are in telegram_list_walk.hpp (TelegramList's compiled
+// once, in telegram_list.cpp).
+template <class Client>
+class BasicTelegramList : public TelegramListTypes {
+ public:
+  BasicTelegramList(TimeBase& time_base, TelegramRam& ram, Client& client);
+  ~BasicTelegramList();
+  BasicTelegramList(const BasicTelegramList&) = delete;
+  BasicTelegramList& operator=(const BasicTelegramList&) = delete;
 
   // A cycle starts: a receive header still waiting is missed, then the walk starts at
-  // the list RAM word `list_pointer` names (COMPT0 or COMPT1).
-  void start(std::uint16_t list_pointer);
+  // the list RAM word `list_pointer` names (COMPT0 or COMPT1). The walk's functions are
+  // flattened (declared so: GCC takes a template member's attributes from its declaration).
+  [[gnu::flatten]] void start(std::uint16_t list_pointer);
   // Forgets the walk (reset); no client calls.
   void stop();
 
@@ -126,8 +136,9 @@ class TelegramList {
   // Held: a receive header took an address-255 telegram, whose detection is awaited.
   enum class State : std::uint8_t { Idle, Transmit, Receive, Held, End };
 
-  void walk(std::uint16_t address);
-  void walk_past(const ListItem& item);  // offer(), taken(): `item` served, walk on
+  [[gnu::flatten]] void walk(std::uint16_t address);
+  // offer(), taken(): `item` served, walk on.
+  [[gnu::flatten]] void walk_past(const ListItem& item);
   void walk_from(const ListItem& first);
   bool arm(const ListItem& item);  // false: the item is already over, walk on
   bool arm_receive(const ListItem& item);
@@ -135,7 +146,7 @@ class TelegramList {
   // Time-base actions (function + context: no std::function per armed item).
   static void transmit_time(void* list);
   static void end_time(void* list);
-  void fire_transmit();
+  [[gnu::flatten]] void fire_transmit();
   void close_window();
   void fire_end();
   // Mostly neither is armed (a receive header without TCHK waits, or the end marker ran).
@@ -171,7 +182,7 @@ class TelegramList {
   TimeBase& time_base_;
   sim::Scheduler& scheduler_;  // outlives the time base when units are destroyed
   TelegramRam& ram_;
-  ListClient& client_;
+  Client& client_;
   State state_ = State::Idle;
   ListItem item_;
   TimeBase::OwnedEvent event_;              // transmit or end marker due
@@ -181,5 +192,9 @@ class TelegramList {
   // walk reading more items than half the RAM has looped.
   std::uint32_t items_left_ = 0;
 };
+
+// The list of any ListClient (tests' clients), through its virtual functions.
+using TelegramList = BasicTelegramList<ListClient>;
+extern template class BasicTelegramList<ListClient>;
 
 }  // namespace sercon::chip

@@ -31,7 +31,8 @@ namespace sercon::chip {
 
 class Chip;
 
-class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveInterest {
+// Final: its list calls its ListClient handlers directly (BasicTelegramList).
+class TelegramProcessor final : public ChipUnit, private ListClient, private ReceiveInterest {
  public:
   explicit TelegramProcessor(Chip& chip);
   ~TelegramProcessor() override;
@@ -48,6 +49,8 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   std::uint64_t transmissions_skipped() const { return skipped_; }
 
  private:
+  friend class BasicTelegramList<TelegramProcessor>;  // calls the ListClient handlers
+
   // The telegram being received; its start is wants_.receiving.
   struct Receiving {
     ListItem item;
@@ -75,9 +78,9 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
     wants_.receiving = ReceiveWants::kNone;
   }
 
-  void on_cycle_start(const CycleStart& start);
+  [[gnu::flatten]] void on_cycle_start(const CycleStart& start);
   void on_send_mst();
-  void on_telegram_start(sim::Time start, std::uint8_t address);
+  [[gnu::flatten]] void on_telegram_start(sim::Time start, std::uint8_t address);
   [[gnu::always_inline]] inline void on_telegram(const ReceivedTelegram& telegram);
   void on_mst(const wire::DecodedFrame& frame, sim::Time recognised);
   // on_telegram(), offer() and finish_receive() are inline (defined in the .cpp, each called
@@ -117,7 +120,7 @@ class TelegramProcessor : public ChipUnit, private ListClient, private ReceiveIn
   DmaPort& dma_;
   FieldRef regmode_, entmt_, phas0_, phasr_, flmdtadr_;
   TelegramRam ram_;
-  TelegramList list_;
+  BasicTelegramList<TelegramProcessor> list_;
   TransmitPath transmit_;
   ReceivePath receive_;
   MasterMst mst_;
