@@ -136,10 +136,10 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
     // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
     // Frames do not overlap and a detection comes before the next frame's start report,
     // so this is a guard, not a path the ring takes.
-    if (receiving_) receive_missed(receiving_->item);
+    if (receiving()) receive_missed(receiving_.item);
     receiving_ = Receiving{item, false, flag_set};
     wants_.receiving = start;
-    receiving_->val_cleared = receive_.begin(item);
+    receiving_.val_cleared = receive_.begin(item);
   } catch (const ListFault& f) {
     stop_receiving();
     list_fault(f);
@@ -148,7 +148,7 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
 
 void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   const wire::DecodedFrame& frame = telegram.frame;
-  const bool current = receiving_ && wants_.receiving == telegram.start;
+  const bool current = wants_.receiving == telegram.start;  // never kNone
   if (wants_.flag_clear == telegram.start) {
     wants_.flag_clear = kNone;
     if (!is_mst(frame)) flmdtadr_.set(regs_, false);  // an MDT to all drives: another address
@@ -160,14 +160,14 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
     return;
   }
   if (current) {
-    const ListItem item = receiving_->item;
+    const ListItem& item = receiving_.item;  // kept: stop_receiving() only clears the start
     finish_receive(item, frame);
     list_.taken(item);  // an address-255 telegram held the walk at its header
   }
 }
 
 void TelegramProcessor::withdraw_mst() {
-  const Receiving r = *receiving_;
+  const Receiving r = receiving_;
   stop_receiving();
   // Delta spec 2.9: only an MDT with the drive's address requests an AT; an MST taken by a
   // header for address 255 does not.

@@ -94,7 +94,9 @@ class BasicTelegramList : public TelegramListTypes {
     const Match match = would_take(start, address);
     if (match != Match::Accepted) return match;
     item = item_;
-    cancel_event();
+    // A receive header waits: event_ (transmit, end marker) is not armed, only a TCHK
+    // window's judgement may be.
+    cancel_window_judge();
     // Doc §2: the walk reaches the items behind a receive header only once it is served; an
     // address-255 telegram may still prove to be an MST, which serves no header (§3).
     if (address == kAddress255) {
@@ -152,6 +154,9 @@ class BasicTelegramList : public TelegramListTypes {
   // Mostly neither is armed (a receive header without TCHK waits, or the end marker ran).
   void cancel_event() {
     event_.cancel();
+    cancel_window_judge();
+  }
+  void cancel_window_judge() {
     if (window_judge_.value != 0) {
       scheduler_.cancel(window_judge_);
       window_judge_ = {};

@@ -10,7 +10,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 
 #include "sercon/chip/chip_unit.hpp"
 #include "sercon/chip/cycle_control.hpp"
@@ -51,7 +50,7 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
  private:
   friend class BasicTelegramList<TelegramProcessor>;  // calls the ListClient handlers
 
-  // The telegram being received; its start is wants_.receiving.
+  // The telegram being received; its start is wants_.receiving (kNone: none).
   struct Receiving {
     ListItem item;
     bool val_cleared = false;  // begin() cleared VAL (undone if it proves to be an MST)
@@ -73,10 +72,9 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   // asked at every telegram start and list transmission.
   bool address_flag_phase() const { return !master() && phase(false) <= 2; }
   ServiceChannelPort& port() { return *port_; }
-  void stop_receiving() {
-    receiving_.reset();
-    wants_.receiving = ReceiveWants::kNone;
-  }
+  // A telegram is being received: receiving_ holds it (wants_.receiving is its start).
+  bool receiving() const { return wants_.receiving != ReceiveWants::kNone; }
+  void stop_receiving() { wants_.receiving = ReceiveWants::kNone; }
 
   [[gnu::flatten]] void on_cycle_start(const CycleStart& start);
   void on_send_mst();
@@ -88,7 +86,7 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   // unit (finish_receive() a call of its own cost about 14 a telegram).
   inline void offer(sim::Time start, std::uint8_t address);
   void withdraw_mst();
-  // `item`: the header receiving_ held (a copy: stop_receiving() clears it).
+  // `item`: the header receiving_ holds (stop_receiving() leaves it as it is).
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
                                                     const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
@@ -126,7 +124,7 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   MasterMst mst_;
   PassThroughServiceChannel pass_through_;
   ServiceChannelPort* port_ = &pass_through_;
-  std::optional<Receiving> receiving_;
+  Receiving receiving_;  // meaningful while receiving()
   // What the receiver compares frames with: the list's wait, the start of the telegram
   // being received (receiving_), and (flag_clear) 410B: the start of an address-255 telegram
   // that came while an ACHK = 1 header for another address waited; FLMDTADR is cleared at

@@ -38,7 +38,9 @@ class TransmitPath {
   // start of a list.
   bool gather_plain(const ListItem& item, std::span<const std::uint8_t>& data) {
     if (item.has(telegram::kEn | telegram::kDma | telegram::kDbuf)) return false;
-    words_.resize(item.length);
+    // Mostly the size it had for the same header last cycle (resize() costs more than this).
+    if (words_.size() != item.length) [[unlikely]]
+      words_.resize(item.length);
     std::uint32_t end = 0;
     const std::size_t filled = scan_run(item, end);
     if (filled == kNotARun) return false;
