@@ -101,6 +101,30 @@ void Scheduler::SortedRun::insert(const Entry& entry) {
   buffer[tail++] = entry;
 }
 
+// Before the first entry of its time scheduled after it (generations tell: the entries of
+// a time scheduled before a deferred event come before those scheduled after it), else
+// after the entries of its time.
+void Scheduler::SortedRun::insert_deferred(const Entry& entry) {
+  Entry* const last = buffer.data() + tail;
+  Entry* at = std::lower_bound(buffer.data() + head, last, entry.when,
+                               [](const Entry& e, Time t) { return e.when < t; });
+  while (at != last && at->when == entry.when && earlier(at->generation, entry.generation)) ++at;
+  const std::size_t offset = static_cast<std::size_t>(at - (buffer.data() + head));
+  if (tail == buffer.size()) make_room();
+  Entry* const place = buffer.data() + head + offset;
+  std::copy_backward(place, buffer.data() + tail, buffer.data() + tail + 1);
+  *place = entry;
+  ++tail;
+}
+
+void Scheduler::LaterEntries::insert_deferred(const Entry& entry) {
+  const auto at = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
+    return e.when == entry.when && earlier(entry.generation, e.generation);
+  });
+  entries.insert(at, entry);
+  earliest = std::min(earliest, entry.when);
+}
+
 // Takes a pending event's entry out (it is there: live entries are never passed over).
 // The live entry: a cancelled event's entry may still sit at the same time with the same
 // slot (reused since), told apart by its generation.
@@ -247,15 +271,93 @@ void Scheduler::move_owned(OwnedSlot owned, Time when) {
   requeue(owned, when);
 }
 
+// A moved event keeps its generation (its EventId), so the deferred events due at `when`,
+// scheduled before the move, are queued first. A deferred event moved is queued now.
 void Scheduler::requeue(std::uint32_t index, Time when) {
   Slot& slot = slots_[index];
-  if (slot.when <= near_limit_) {
+  const auto deferred = std::find_if(
+      deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_), deferred_.end(),
+      [&](const Entry& e) { return e.slot == index && e.generation == slot.generation; });
+  if (deferred != deferred_.end()) {
+    deferred_.erase(deferred);
+  } else if (slot.when <= near_limit_) {
     near_.remove(slot.when, index, slot.generation);
   } else {
     far_.remove(index, slot.generation);
   }
+  queue_deferred_at(when);
   slot.when = when;
   insert(when, index, slot.generation);
+}
+
+// defer_owned() refused, due now, or before the last deferred event.
+void Scheduler::defer_owned_slowly(OwnedSlot owned, Time when, Action action) {
+  if (when < now_ || owned_pending(owned)) refuse_arm("Scheduler::defer_owned", owned, when);
+  Slot& slot = slots_[owned];
+  const Entry entry{when, owned, slot.generation = next_generation()};  // odd: live
+  slot.when = when;
+  owned_actions_[slot.next_free & ~kOwned] = action;
+  if (!deferred_waiting() || when >= deferred_.back().when) {
+    deferred_.push_back(entry);
+    deferred_last_ = std::max(deferred_last_, when);
+  } else {  // after those of its time, deferred before it
+    const auto at =
+        std::upper_bound(deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_),
+                         deferred_.end(), when, [](Time t, const Entry& e) { return t < e.when; });
+    deferred_.insert(at, entry);
+  }
+  // Due now, the run may be at its time already: queued at once.
+  if (when == now_) return queue_deferred_at(when);
+  stop_ = std::min(stop_, when - 1);
+}
+
+void Scheduler::place_deferred(const Entry& entry) {
+  if (entry.when <= near_limit_) {
+    near_.insert_deferred(entry);
+  } else {
+    far_.insert_deferred(entry);
+  }
+}
+
+bool Scheduler::queue_deferred(Time next, Time until) {
+  const Time due = std::min(next, until);
+  bool queued = false;
+  std::size_t i = deferred_head_;
+  for (const std::size_t n = deferred_.size(); i != n; ++i) {
+    const Entry entry = deferred_[i];
+    if (slots_[entry.slot].generation != entry.generation) continue;  // cancelled
+    if (entry.when > due) break;
+    place_deferred(entry);  // leaves deferred_ as it is
+    queued = true;
+  }
+  deferred_head_ = i;
+  if (deferred_head_ >= kDeferredCompacted && deferred_head_ * 2 >= deferred_.size())
+    compact_deferred();
+  set_stop();
+  return queued;
+}
+
+void Scheduler::compact_deferred() {
+  deferred_.erase(deferred_.begin(),
+                  deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_));
+  deferred_head_ = 0;
+}
+
+void Scheduler::queue_deferred_at(Time when) {
+  const auto first =
+      std::lower_bound(deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_),
+                       deferred_.end(), when, [](const Entry& e, Time t) { return e.when < t; });
+  auto last = first;
+  for (; last != deferred_.end() && last->when == when; ++last) {
+    if (slots_[last->slot].generation == last->generation) place_deferred(*last);
+  }
+  deferred_.erase(first, last);
+}
+
+void Scheduler::set_stop() {
+  const Time first =
+      deferred_waiting() ? deferred_[deferred_head_].when : std::numeric_limits<Time>::max();
+  stop_ = std::min(until_, first == std::numeric_limits<Time>::max() ? first : first - 1);
 }
 
 void Scheduler::release(std::uint32_t index) {
@@ -299,10 +401,15 @@ void Scheduler::run_callback(std::uint32_t index) {
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
   Signal::Steps steps;
+  until_ = until;
+  set_stop();
   for (;;) {
     const std::size_t head = near_.head;
     if (head == near_.tail) {
-      if (far_.empty()) break;
+      if (far_.empty()) {
+        if (deferred_waiting() && queue_deferred(until, until)) continue;
+        break;
+      }
       refill();
       continue;
     }
@@ -313,10 +420,15 @@ void Scheduler::run_until(Time until) {
       near_.head = head + 1;
       continue;
     }
-    if (entry.when > until) break;
+    // Past `until`, or at a deferred event's time (stop_ is the lower).
+    if (entry.when > stop_) [[unlikely]] {
+      if (queue_deferred(entry.when, until)) continue;
+      if (entry.when > until) break;
+    }
     run(entry);
     steps.done();
   }
+  until_ = std::numeric_limits<Time>::max();
   now_ = until;
 }
 

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace sercon::sim {
@@ -312,6 +314,7 @@ TEST(Scheduler, OwnedSlotRulesAreCheckedAndGivenBackSlotsAreTakenAgain) {
   EXPECT_THROW(s.arm_owned_now(slot), std::logic_error);
   EXPECT_THROW(s.arm_owned(slot, 20, count), std::logic_error);
   EXPECT_THROW(s.arm_owned(slot, -1), std::invalid_argument);
+  EXPECT_THROW(s.defer_owned(slot, 20, count), std::logic_error);
   EXPECT_TRUE(s.owned_pending(slot));
   s.run_until(10);
   EXPECT_EQ(runs, 1);  // the refused arms left the one event as it was
@@ -325,6 +328,15 @@ TEST(Scheduler, OwnedSlotRulesAreCheckedAndGivenBackSlotsAreTakenAgain) {
   s.run_until(30);
   EXPECT_EQ(other_runs, 1);
   EXPECT_EQ(runs, 1);
+  EXPECT_THROW(s.defer_owned(again, 20, count), std::invalid_argument);
+  s.defer_owned(again, 40, count);
+  EXPECT_TRUE(s.owned_pending(again));
+  EXPECT_EQ(s.pending_count(), 1u);
+  EXPECT_THROW(s.defer_owned(again, 50, count), std::logic_error);
+  EXPECT_EQ(s.next_time(), std::optional<Time>{40});
+  s.run_until(40);
+  EXPECT_EQ(other_runs, 2);
+  EXPECT_FALSE(s.owned_pending(again));
   // Owners come and go (rings built one after another on one scheduler): one slot serves.
   const Scheduler::OwnedSlot first = s.own(count, &runs);
   s.disown(first);
@@ -354,7 +366,7 @@ struct Draws {
 // later (Later), for now (Now), or later with either of two actions (LaterEitherAction,
 // which arms the owned slot with an action per arm).
 struct TwinOwner {
-  enum class Again { Later, Now, LaterEitherAction };
+  enum class Again { Later, Now, LaterEitherAction, Deferred };
   Scheduler& s;
   Seen& seen;
   Draws& draws;
@@ -373,6 +385,8 @@ struct TwinOwner {
     const Scheduler::Action action = second ? &TwinOwner::fire_second : &TwinOwner::fire_first;
     if (!owned) {
       id = s.at(when, action, this);
+    } else if (again == Again::Deferred) {
+      s.defer_owned(slot, when, action);
     } else if (again == Again::LaterEitherAction) {
       s.arm_owned(slot, when, action);
     } else {
@@ -417,6 +431,7 @@ struct TwinOwner {
         if ((r >> 8) % 3 == 0) arm_now();  // again, right after itself
         break;
       case Again::LaterEitherAction:
+      case Again::Deferred:
         if ((r >> 8) % 2 == 0) arm(soon, (r >> 16) % 2 == 1);
         break;
     }
@@ -540,6 +555,93 @@ Seen run_owned_action_twin(std::uint32_t seed, bool owned) {
 
 TEST(Scheduler, AnOwnedSlotWithAnActionPerArmMovedRunsAsAtAndMoveWouldThroughRandomSteps) {
   expect_twins_agree(run_owned_action_twin, 15485863u);
+}
+
+// A deferred event runs where arm_owned() at its deferral would have put it: after the events
+// of its time scheduled before, before those scheduled after, also those moved to its time
+// afterwards, whether they wait near the front of the queue or far ahead of it.
+TEST(Scheduler, ADeferredEventRunsWhereArmingItThenWouldHavePutIt) {
+  Scheduler s;
+  std::string order;
+  const Scheduler::Action note = [](void* out) { static_cast<std::string*>(out)->push_back('d'); };
+  const Scheduler::OwnedSlot slot = s.own(note, &order);
+  // Far ahead of the queue's front (a new scheduler queues everything far at first).
+  const Time far = kMillisecond;
+  s.at(far, [&] { order.push_back('a'); });
+  s.defer_owned(slot, far, note);
+  s.at(far, [&] { order.push_back('b'); });
+  const auto moved = s.at(far + 10, [&] { order.push_back('c'); });
+  EXPECT_TRUE(s.move(moved, far));
+  s.run_until(far);
+  EXPECT_EQ(order, "adbc");
+  // Near the front.
+  s.at(far + 20, [&] { order.push_back('e'); });
+  s.defer_owned(slot, far + 20, note);
+  const auto moved_too = s.at(far + 30, [&] { order.push_back('g'); });
+  s.at(far + 20, [&] { order.push_back('f'); });
+  EXPECT_TRUE(s.move(moved_too, far + 20));
+  s.run_until(far + 20);
+  EXPECT_EQ(order, "adbcedfg");
+  // Deferred, then moved: as if armed anew at the move.
+  s.defer_owned(slot, far + 40, note);
+  s.at(far + 50, [&] { order.push_back('h'); });
+  s.move_owned(slot, far + 50);
+  s.run_until(far + 50);
+  EXPECT_EQ(order, "adbcedfghd");
+}
+
+// defer_owned() against at(): the owned event deferred (from outside and from its own
+// action, with either action), cancelled and moved, among events near and far that are
+// often due at its very time: scheduled before and after it was deferred, some of them
+// moved to its time, from outside and from events; run by run_until() and step().
+Seen run_deferred_twin(std::uint32_t seed, bool owned) {
+  Scheduler s;
+  Seen seen;
+  Draws draws{seed};
+  TwinOwner owner(s, seen, draws, owned, TwinOwner::Again::Deferred);
+  Time owner_when = 0;  // the owner's time when it was last armed or moved
+  int label = 0;
+  std::vector<Scheduler::EventId> ids;
+  // A noting event at `when` that may schedule another at the owner's time when it runs.
+  std::function<void(Time)> add = [&](Time when) {
+    const int mine = label++;
+    const bool more = draws.below(3) == 0;
+    ids.push_back(s.at(when, [&, mine, more] {
+      seen.emplace_back(s.now(), mine);
+      if (more && owner_when >= s.now()) add(owner_when);
+    }));
+  };
+  for (int round = 0; round < 300; ++round) {
+    for (std::uint32_t i = draws.below(4); i > 0; --i) add(s.now() + near_or_far(draws));
+    const std::uint32_t what = draws.below(6);
+    if (what == 0 && !owner.armed) {
+      owner_when = s.now() + near_or_far(draws);
+      owner.arm(owner_when, draws.below(2) == 1);
+    }
+    if (what == 1 && owner.armed) owner.cancel();
+    if (what == 2 && owner.armed) {
+      owner_when = s.now() + near_or_far(draws);
+      owner.move(owner_when);
+    }
+    // Others due at the owner's time, queued now or moved there.
+    if (what == 3 && owner_when >= s.now()) add(owner_when);
+    if (what == 4 && !ids.empty() && owner_when >= s.now()) {
+      static_cast<void>(
+          s.move(ids[draws.below(static_cast<std::uint32_t>(ids.size()))], owner_when));
+    }
+    if (draws.below(4) == 0) {
+      const std::optional<Time> next = s.next_time();
+      if (next && *next <= s.now() + 100) s.step();
+    } else {
+      s.run_until(s.now() + run_step(draws));
+    }
+  }
+  s.run_until(s.now() + kMillisecond);
+  return seen;
+}
+
+TEST(Scheduler, ADeferredOwnedEventRunsAsAtWouldThroughRandomSteps) {
+  expect_twins_agree(run_deferred_twin, 7907u);
 }
 
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {

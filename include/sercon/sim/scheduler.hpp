@@ -1,5 +1,6 @@
 // A discrete-event scheduler. Events at the same time run in the order they were
-// scheduled, so a scenario replays identically (brief: determinism).
+// scheduled, so a scenario replays identically (brief: determinism). A deferred event
+// (defer_owned) counts as scheduled when it is deferred, though it is queued later.
 #pragma once
 
 #include <algorithm>
@@ -62,7 +63,7 @@ class Scheduler {
     if (when < now_ || owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned", owned, when);
     Slot& slot = slots_[owned];
-    const std::uint32_t generation = ++slot.generation;  // odd: live
+    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
     insert(when, owned, generation);
   }
@@ -74,7 +75,7 @@ class Scheduler {
     if (owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned_now", owned, now_);
     Slot& slot = slots_[owned];
-    const std::uint32_t generation = ++slot.generation;  // odd: live
+    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = now_;
     SortedRun& run = near_;
     if (run.head > 0 && now_ <= near_limit_ &&
@@ -89,6 +90,33 @@ class Scheduler {
   void arm_owned(OwnedSlot owned, Time when, Action action) {
     arm_owned(owned, when);  // first: refused, it leaves the slot's action as it was
     owned_actions_[slots_[owned].next_free & ~kOwned] = action;
+  }
+  // arm_owned(owned, when, action) without a queue entry until the run comes to `when` (or
+  // something is moved to `when`): the event then takes the place among the events due at
+  // `when` that arm_owned() would have given it now (after those scheduled before it,
+  // before those scheduled after). For an event mostly cancelled long before it is due (a
+  // slave's window close, a cycle ahead), which then never enters the queue. Same rules as
+  // arm_owned(); cancel_owned(), move_owned() and disown() take it as any other.
+  // Inline: mostly it goes at the back of the deferred events.
+  void defer_owned(OwnedSlot owned, Time when, Action action) {
+    if (when <= now_ || owned_pending(owned) || when < deferred_last_) [[unlikely]]
+      return defer_owned_slowly(owned, when, action);
+    Slot& slot = slots_[owned];
+    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
+    slot.when = when;
+    owned_actions_[slot.next_free & ~kOwned] = action;
+    deferred_.push_back(Entry{when, owned, generation});
+    deferred_last_ = when;
+    // Mostly the first deferred event is this owner's last one, cancelled since (a slave's
+    // window close, dropped by its next MST): dropped now, the run need not stop at it.
+    for (;;) {  // ends at the one just deferred, if not before
+      const Entry& first = deferred_[deferred_head_];
+      if (slots_[first.slot].generation == first.generation) break;
+      ++deferred_head_;
+    }
+    stop_ = std::min(until_, deferred_[deferred_head_].when - 1);
+    if (deferred_head_ >= kDeferredCompacted && deferred_head_ * 2 >= deferred_.size()) [[unlikely]]
+      compact_deferred();
   }
   // Moves the pending owned event to `when` as move() moves an event: it then runs after
   // the events already due at `when`. Throws std::invalid_argument if `when` is in the past,
@@ -140,14 +168,16 @@ class Scheduler {
 
  private:
   // Events live in reusable slots (no allocation per event once the vectors have grown).
-  // A slot's generation is odd while it holds an event and goes up by one when it is
-  // taken and when it is freed (an owned slot's: when it is armed, and when its event runs
-  // or is cancelled); an EventId is the slot's index + 1 and that odd generation, so a
-  // stale id never matches a reused slot. The queue holds only
-  // {time, slot, generation}, sorted by time; an event goes in after every entry of its
-  // time, so same-time events keep their scheduling order without a sequence number. A
-  // cancelled event's entry is dropped when it comes to the front (its generation no
-  // longer matches).
+  // A slot's generation is odd while it holds an event: each event scheduled takes the next
+  // odd number of one count (next_generation()), and a slot's goes up by one (even) when
+  // its event runs or is cancelled; an EventId is the slot's index + 1 and that odd
+  // generation, so a stale id does not match a reused slot (for 2^31 events). The queue
+  // holds only {time, slot, generation}, sorted by time; an event goes in after every entry
+  // of its time, so same-time events keep their scheduling order. A deferred event, queued
+  // later, finds its place among them by generation: the generations say the order in which
+  // events were scheduled (earlier(); a moved event keeps its generation, so a move first
+  // queues the deferred events due at its new time). A cancelled event's entry is dropped
+  // when it comes to the front (its generation no longer matches).
   struct Slot {
     Action action = nullptr;  // null: `callback` holds the event, or an owned slot's
     void* context = nullptr;
@@ -165,6 +195,13 @@ class Scheduler {
     std::uint32_t generation;
   };
 
+  // The generation of an event scheduled now (odd; wraps around after 2^31 events).
+  std::uint32_t next_generation() { return generation_ += 2; }
+  // Whether the event of generation `a` was scheduled before that of `b` (both pending:
+  // scheduled fewer than 2^31 events apart).
+  static bool earlier(std::uint32_t a, std::uint32_t b) {
+    return static_cast<std::int32_t>(a - b) < 0;
+  }
   [[noreturn]] void refuse_past(const char* what, Time when) const;
   // arm_owned() refused: `when` in the past, or the owned event pending already.
   [[noreturn, gnu::cold]] void refuse_arm(const char* what, OwnedSlot owned, Time when) const;
@@ -175,7 +212,7 @@ class Scheduler {
   EventId take_slot(std::uint32_t index, Time when) {
     Slot& slot = slots_[index];
     free_head_ = slot.next_free;
-    const std::uint32_t generation = ++slot.generation;  // odd: live
+    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
     insert(when, index, generation);
     return EventId{std::uint64_t{generation} << 32 | (index + 1u)};
@@ -208,6 +245,8 @@ class Scheduler {
 
     bool empty() const { return head == tail; }
     void insert(const Entry& entry);
+    // A deferred event's entry: after the entries of its time scheduled before it.
+    void insert_deferred(const Entry& entry);
     void remove(Time when, std::uint32_t slot, std::uint32_t generation);
     void make_room();
   };
@@ -223,20 +262,45 @@ class Scheduler {
       earliest = std::min(earliest, entry.when);
     }
     void remove(std::uint32_t slot, std::uint32_t generation);
+    void insert_deferred(const Entry& entry);  // as SortedRun's, in scheduling order
   };
 
   // The first queue entry of a pending event, dropping those of cancelled ones; null when
-  // nothing is pending.
+  // nothing is pending. Deferred events due by then are queued first.
   const Entry* front() {
     for (;;) {
+      const Entry* first = nullptr;
       for (; near_.head != near_.tail; ++near_.head) {
         const Entry& entry = near_.buffer[near_.head];
-        if (slots_[entry.slot].generation == entry.generation) return &entry;
+        if (slots_[entry.slot].generation == entry.generation) {
+          first = &entry;
+          break;
+        }
       }
-      if (far_.empty()) return nullptr;
-      refill();
+      if (first == nullptr && !far_.empty()) {
+        refill();
+        continue;
+      }
+      if (!queue_deferred(first != nullptr ? first->when : std::numeric_limits<Time>::max(),
+                          std::numeric_limits<Time>::max()))
+        return first;
     }
   }
+  // Deferred events: deferred_[deferred_head_, end), sorted by time (those of one time in
+  // the order deferred); cancelled ones are dropped as they come to the front. run_until()
+  // stops at stop_, before until_ and the earliest deferred time, to queue them.
+  bool deferred_waiting() const { return deferred_head_ != deferred_.size(); }
+  // Queues the deferred events due at or before `next` and `until`, each in its place;
+  // true if it queued any. Then sets stop_.
+  bool queue_deferred(Time next, Time until);
+  void queue_deferred_at(Time when);  // those due exactly then (before a move to `when`)
+  void place_deferred(const Entry& entry);
+  void defer_owned_slowly(OwnedSlot owned, Time when, Action action);
+  // Drops the deferred_ entries before deferred_head_, once they are at least half of them
+  // and some dozens: not at every call.
+  static constexpr std::size_t kDeferredCompacted = 32;
+  void compact_deferred();
+  void set_stop();
   void refill();
   void sort_near(std::size_t sorted, std::size_t n);  // refill()'s entries, by time
   static constexpr int kMergedRuns = 8;  // runs merged one by one; more: std::stable_sort
@@ -283,6 +347,12 @@ class Scheduler {
   LaterEntries far_;
   std::vector<Entry> scratch_;  // sort_near()'s (swapped with near_'s buffer)
   Time near_limit_ = -1;
+  std::uint32_t generation_ = 1;  // the last handed out
+  std::vector<Entry> deferred_;
+  std::size_t deferred_head_ = 0;
+  Time deferred_last_ = std::numeric_limits<Time>::min();  // no deferred_ entry is later
+  Time until_ = std::numeric_limits<Time>::max();          // run_until()'s, while it runs
+  Time stop_ = std::numeric_limits<Time>::max();
   std::vector<Slot> slots_;
   std::uint32_t free_head_ = 0;              // index + 1 of the first free slot, 0: none
   std::vector<Action> owned_actions_;        // of the owned slots (Slot::next_free)
