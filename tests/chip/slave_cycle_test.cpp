@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "timing_bench.hpp"
 
@@ -135,6 +136,29 @@ TEST(SlaveCycle, WindowClosesExactlyAfterTscycPlusJtscyc2) {
     b.mst_loaded_at(b.step_into(load, kCloses + (late ? 1 : 0)));
     EXPECT_EQ(b.window_flags(), late ? (kIntMstMiss | kIntMstLate) : 0) << late;
   }
+}
+
+// The close is an event of the cycle start that expects it (Scheduler::defer_owned keeps
+// that place though it enters the queue only at its time): an event due at the same instant
+// and scheduled before that cycle start runs before INT_MSTMISS is raised, one scheduled
+// after it runs after.
+TEST(SlaveCycle, TheWindowClosesInItsPlaceAmongEventsOfItsInstant) {
+  SlaveBench b;
+  const Time recognised = 100 * kMicrosecond;
+  const Time load = edge_at_or_after(recognised, b.mclk()) + 3 * b.mclk();
+  const Time close = b.step_into(load, kCloses + 1);
+  std::string seen;
+  const auto note = [&](char name) {
+    return [&b, &seen, name] {
+      seen.push_back(name);
+      seen.push_back((b.chip.reg_read(kIntStat) & kIntMstMiss) != 0 ? '+' : '-');
+    };
+  };
+  b.bench.scheduler.at(close, note('a'));
+  EXPECT_EQ(b.mst(recognised), load);
+  b.bench.scheduler.at(close, note('b'));
+  b.run_to(close);
+  EXPECT_EQ(seen, "a-b+");
 }
 
 // Facts §5: "late -> INT_MSTLATE". Decision: an MST after its window closed empty (so after

@@ -45,7 +45,9 @@ class CycleWindow {
     closes_ = tscyc_ + static_cast<std::int16_t>(regs.field_value(kJtscyc2));
     state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
     // A window programmed to close before the counter's start closes at the first step.
-    time_base_.at_cycle_time(close_event_, std::max(closes_, start.count), &CycleWindow::closes);
+    // Deferred: mostly the next MST comes first and drops it.
+    time_base_.defer_at_cycle_time(close_event_, std::max(closes_, start.count),
+                                   &CycleWindow::closes);
   }
   void forget() {  // back to Unsynced
     close_event_.cancel();

@@ -165,6 +165,19 @@ class TimeBase : public ChipUnit {
     owned.asked_ = ++asked_;
     return true;
   }
+  // The same, deferred (Scheduler::defer_owned): for an event mostly dropped by the next
+  // cycle start long before it is due (the slave's window close), which then never enters
+  // the scheduler's queue.
+  [[gnu::always_inline]] bool defer_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
+                                                  sim::Scheduler::Action action) {
+    const std::optional<sim::Time> step = step_ahead(cycle_time);
+    if (!step) return false;
+    scheduler_.defer_owned(owned.slot_, *step, action);
+    owned.cycle_time_ = cycle_time;
+    owned.when_ = *step;
+    owned.asked_ = ++asked_;
+    return true;
+  }
   void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
   std::optional<sim::Time> when(CycleEvent event) const {
