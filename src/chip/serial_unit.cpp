@@ -121,6 +121,14 @@ void SerialUnit::on_telegram(TelegramHandler handler) {
   receiver_->on_telegram(std::move(handler));
 }
 
+void SerialUnit::on_telegram_start(void* context, TelegramStartFn handler) {
+  receiver_->on_start(context, handler);
+}
+
+void SerialUnit::on_telegram(void* context, TelegramFn handler) {
+  receiver_->on_telegram(context, handler);
+}
+
 void SerialUnit::set_interest(const ReceiveInterest* interest) {
   receiver_->set_interest(interest);
 }

@@ -53,13 +53,42 @@ SerialReceiver::~SerialReceiver() {
 }
 
 void SerialReceiver::on_start(SerialUnit::TelegramStartHandler handler) {
-  on_start_ = std::move(handler);
-  refresh_hop_check();
-  plan_reports();
+  start_function_ = std::move(handler);
+  on_start_ = {};
+  if (start_function_) {
+    on_start_ = {[](void* f, sim::Time start, std::uint8_t address) {
+                   (*static_cast<SerialUnit::TelegramStartHandler*>(f))(start, address);
+                 },
+                 &start_function_};
+  }
+  handlers_changed();
 }
 
 void SerialReceiver::on_telegram(SerialUnit::TelegramHandler handler) {
-  on_telegram_ = std::move(handler);
+  telegram_function_ = std::move(handler);
+  on_telegram_ = {};
+  if (telegram_function_) {
+    on_telegram_ = {[](void* f, const ReceivedTelegram& telegram) {
+                      (*static_cast<SerialUnit::TelegramHandler*>(f))(telegram);
+                    },
+                    &telegram_function_};
+  }
+  handlers_changed();
+}
+
+void SerialReceiver::on_start(void* context, SerialUnit::TelegramStartFn handler) {
+  start_function_ = nullptr;
+  on_start_ = {handler, context};
+  handlers_changed();
+}
+
+void SerialReceiver::on_telegram(void* context, SerialUnit::TelegramFn handler) {
+  telegram_function_ = nullptr;
+  on_telegram_ = {handler, context};
+  handlers_changed();
+}
+
+void SerialReceiver::handlers_changed() {
   refresh_hop_check();
   plan_reports();
 }

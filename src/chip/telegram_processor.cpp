@@ -40,9 +40,12 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
     static_cast<TelegramProcessor*>(tp)->on_cycle_start(start);
   });
   cycle_control_.on_send_mst([this] { on_send_mst(); });
-  serial_.on_telegram_start(
-      [this](sim::Time start, std::uint8_t address) { on_telegram_start(start, address); });
-  serial_.on_telegram([this](const ReceivedTelegram& telegram) { on_telegram(telegram); });
+  serial_.on_telegram_start(this, [](void* tp, sim::Time start, std::uint8_t address) {
+    static_cast<TelegramProcessor*>(tp)->on_telegram_start(start, address);
+  });
+  serial_.on_telegram(this, [](void* tp, const ReceivedTelegram& telegram) {
+    static_cast<TelegramProcessor*>(tp)->on_telegram(telegram);
+  });
   wants_.header = &list_.wait();
   wants_.other_address_counts = chip.variant() == Variant::Sercon410B;
   serial_.set_interest(this);

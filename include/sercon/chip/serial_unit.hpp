@@ -119,6 +119,10 @@ class SerialUnit : public ChipUnit {
  public:
   using TelegramStartHandler = std::function<void(sim::Time start, std::uint8_t address)>;
   using TelegramHandler = std::function<void(const ReceivedTelegram&)>;
+  // The same handlers as a plain function and its context, called without std::function's
+  // indirection (the telegram processor's, at every report).
+  using TelegramStartFn = void (*)(void* context, sim::Time start, std::uint8_t address);
+  using TelegramFn = void (*)(void* context, const ReceivedTelegram& telegram);
 
   static constexpr unsigned kTxdCount = 6;
   // The repeater passes RxD on to TxD this many bit times after it arrives, rounded up to
@@ -159,9 +163,11 @@ class SerialUnit : public ChipUnit {
   // --- receiver events, called at the simulated time they happen -------------------------
   // Once the address byte is in: opening flag + address (with stuffing) + pipeline delay.
   void on_telegram_start(TelegramStartHandler handler);
+  void on_telegram_start(void* context, TelegramStartFn handler);
   // At ReceivedTelegram::detected, for every frame the decoder reports (errors included),
   // as far as the interest (below) wants it.
   void on_telegram(TelegramHandler handler);
+  void on_telegram(void* context, TelegramFn handler);
   // Only reports `interest` wants are made (nullptr: all). It must outlive the unit or be
   // taken back with nullptr.
   void set_interest(const ReceiveInterest* interest);

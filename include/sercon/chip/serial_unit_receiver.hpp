@@ -56,6 +56,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void refresh_rate();
   void on_start(SerialUnit::TelegramStartHandler handler);
   void on_telegram(SerialUnit::TelegramHandler handler);
+  void on_start(void* context, SerialUnit::TelegramStartFn handler);
+  void on_telegram(void* context, SerialUnit::TelegramFn handler);
   void set_interest(const ReceiveInterest* interest);
   void interest_changed() { plan_reports(); }
 
@@ -380,8 +382,20 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   SerialUnit& unit_;
   sim::Scheduler& scheduler_;  // the chip's, kept here: a hop asks for the time, one pointer less
   const MclkGrid& mclk_;       // the chip's, fixed for its life: the report times count in it
-  SerialUnit::TelegramStartHandler on_start_;
-  SerialUnit::TelegramHandler on_telegram_;
+  // A report handler as it is called: a plain function and its context (a std::function
+  // given is called through one of these, kept in start_function_ / telegram_function_).
+  template <typename... Args>
+  struct Handler {
+    void (*call)(void* context, Args...) = nullptr;
+    void* context = nullptr;
+    explicit operator bool() const { return call != nullptr; }
+    void operator()(Args... args) const { call(context, args...); }
+  };
+  Handler<sim::Time, std::uint8_t> on_start_;
+  Handler<const ReceivedTelegram&> on_telegram_;
+  SerialUnit::TelegramStartHandler start_function_;
+  SerialUnit::TelegramHandler telegram_function_;
+  void handlers_changed();
   const ReceiveInterest* interest_ = nullptr;
   const ReceiveWants* wants_ = nullptr;  // interest_->published(), read at every ask
   // interest_->may_want_addressed(), asked again at every plan and after every report.
