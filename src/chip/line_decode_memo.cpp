@@ -90,10 +90,14 @@ void move_head_and_tail(std::uint8_t* to, const std::uint8_t* from, std::size_t 
                                               std::span<const std::uint8_t> from) {
   const std::size_t n = from.size();
   if (n > to.size()) [[unlikely]] {
-    to.assign(from.begin(), from.end());
-    return;
+    if (n > to.capacity()) {
+      to.assign(from.begin(), from.end());
+      return;
+    }
+    to.resize(n);  // within its storage (it held a shorter telegram): cheaper than assign()
+  } else {
+    to.resize(n);  // no longer: nothing to fill
   }
-  to.resize(n);  // no longer: nothing to fill
   std::uint8_t* const t = to.data();
   const std::uint8_t* const f = from.data();
   // Head and tail moves, overlapping for sizes between the powers of two.

@@ -129,6 +129,12 @@ inline std::uint64_t reverse_bits(std::uint64_t x) {
   return (x >> 1 & 0x5555555555555555ull) | (x & 0x5555555555555555ull) << 1;
 }
 
+// Bit i set where bits i..i-4 of `x` (i down, first bit highest) are all 1.
+inline std::uint64_t five_ones(std::uint64_t x) {
+  const std::uint64_t two = x & x << 1;
+  return two & two << 2 & x << 4;
+}
+
 // Appends the top `n` (1..64) bits of `top` (the rest 0), first bit highest.
 template <class Full>
 [[gnu::always_inline]] inline void put_top(Decoded& d, std::uint64_t top, unsigned n,
@@ -162,8 +168,7 @@ template <class Full>
   }
   const unsigned bits = 8 * n;
   const std::uint64_t top = reverse_bits(bytes);  // the rest 0: no run reaches past them
-  const std::uint64_t runs = top & top << 1 & top << 2 & top << 3 & top << 4;
-  if (runs == 0 && d.run + static_cast<unsigned>(std::countl_one(top)) < 5) [[likely]] {
+  if (five_ones(top) == 0 && d.run + static_cast<unsigned>(std::countl_one(top)) < 5) [[likely]] {
     put_top(d, top, bits, full);
     d.run = static_cast<unsigned>(std::countr_one(top >> (64 - bits)));
     return;
@@ -178,7 +183,7 @@ template <class Full>
     if (run + static_cast<unsigned>(std::countl_one(rest)) >= 5) {
       take = 5 - run;
     } else {
-      const std::uint64_t five = rest & rest << 1 & rest << 2 & rest << 3 & rest << 4;
+      const std::uint64_t five = five_ones(rest);
       if (five == 0) break;
       take = static_cast<unsigned>(std::countl_zero(five)) + 5;  // a run of five starts there
     }
@@ -211,12 +216,19 @@ template <class Full>
   const std::uint8_t* p = data.data();
   std::size_t n = data.size();
   Fcs16 fcs;
-  fcs.update_word(address, 1);
   // The address by the table (255, an MST's or MDT's, has five 1s, which would send a word
-  // byte by byte), then the data 8 bytes at a time, the last 6 or fewer with the FCS.
+  // the slow way), then the data 8 bytes at a time, the last 6 or fewer with the FCS.
   const std::uint32_t e = kStuff[d.run * 256 + address];
   put(d, e & 0x3FFu, (e >> 10) & 0xFu, full);
   d.run = e >> 14;
+  if (n <= 6) {  // a short telegram (an AT, an MST): one FCS update for address and data
+    const std::uint64_t tail = load_le(p, n);
+    fcs.update_word(address | tail << 8, static_cast<unsigned>(n + 1));
+    const std::uint16_t v = fcs.value();
+    stuff_word(d, tail | std::uint64_t{v} << (8 * n), static_cast<unsigned>(n + 2), full);
+    return v;
+  }
+  fcs.update_word(address, 1);
   while (n > 6) {
     const std::size_t k = n < 8 ? n : 8;
     const std::uint64_t w = k == 8 ? load_le8(p) : load_le(p, k);
@@ -253,25 +265,31 @@ template <class Full>
   // of the old bits, only bytes past those are cleared.
   out.drop_for_overwrite(data.size() + 5);
   // One allocation for all of it (flags and at most 10 bits per stuffed byte, and a word of
-  // room past them), every word stored at a byte boundary into it (append_reserved).
+  // room past them), every word stored at a byte boundary into it (reserved_bytes).
   out.reserve(16 + 10 * (data.size() + 3) + 64);
+  std::uint8_t* const first = out.reserved_bytes();
+  std::uint8_t* at = first;
   bool level = initial_level_high;
-  const auto full = [&out, &level](std::uint64_t w) {
+  const auto full = [&at, &level](std::uint64_t w) {
     const std::uint64_t x = changes_so_far(~w);
     const std::uint64_t levels = level ? ~x : x;
-    out.append_reserved(levels, 64);
+    LineBits::store_word(at, levels);
+    at += 8;
     level = (levels & 1u) != 0;
   };
   Decoded d;
   const std::uint16_t fcs = code_telegram(d, address, data, full);
+  std::size_t size = 8 * static_cast<std::size_t>(at - first);
   if (d.count != 0) {
-    const std::uint64_t mask = top_mask(d.count);
+    const std::uint64_t mask = kOnes << (64 - d.count);  // d.count is 1..63
     const std::uint64_t x = changes_so_far(~d.bits & mask);
     const std::uint64_t levels = (level ? ~x : x) & mask;
-    out.append_reserved(levels, d.count);  // after whole words: at a byte boundary
+    LineBits::store_word(at, levels);  // the rest 0
     level = ((levels >> (64 - d.count)) & 1u) != 0;
+    size += d.count;
   }
-  return {{0, out.size()}, level, fcs};
+  out.written(size);
+  return {{0, size}, level, fcs};
 }
 
 }  // namespace sercon::wire::encoder_detail

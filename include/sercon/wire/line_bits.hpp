@@ -31,14 +31,17 @@ class LineBits {
   // Appends `count` copies of one level.
   void append_run(bool high, std::size_t count);
   void append(const LineBits& other);
-  // Appends the `count` (1..64) most significant bits of `msb_first` (the rest 0) into room
-  // reserve() made: precondition size() % 8 == 0 and a reserve() of size() + 64 bits or
-  // more since. The encoder's word loop: no checks.
-  void append_reserved(std::uint64_t msb_first, unsigned count) {
+  // The encoder's word loop, without checks: after drop_for_overwrite() and a reserve() of
+  // the bits to come plus a word, whole 8-byte words are stored from reserved_bytes() on
+  // (store_word), then written() sets the bit count (the last word's bits past it 0). The
+  // writer keeps its place in a register, not size() in memory after every store.
+  std::uint8_t* reserved_bytes() { return buf_.data(); }
+  // The 64 bits of `msb_first` at `to`, MSB first.
+  static void store_word(std::uint8_t* to, std::uint64_t msb_first) {
     const std::uint64_t be = __builtin_bswap64(msb_first);
-    std::memcpy(buf_.data() + size_ / 8, &be, 8);  // whole bytes: written over, not or-ed
-    size_ += count;
+    std::memcpy(to, &be, 8);
   }
+  void written(std::size_t bit_count) { size_ = bit_count; }
   // Room for bit_count bits (and the word past them); inline: a telegram's buffer, used
   // before, has it already.
   void reserve(std::size_t bit_count) {
@@ -46,7 +49,7 @@ class LineBits {
   }
   void clear();
   // For a writer that writes at least `min_bytes` whole bytes again from bit 0 with
-  // append_reserved (the encoder): drops the bits, clearing only their bytes past those
+  // store_word (the encoder): drops the bits, clearing only their bytes past those
   // (cheaper than clear() first). The writer's last word leaves 0s past its bits.
   void drop_for_overwrite(std::size_t min_bytes) {
     const std::size_t bytes = (size_ + 7) / 8;
