@@ -54,9 +54,9 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   // With the receivers' decode, known from what was encoded (docs/serial-and-ring.md,
   // "Receiver").
   LineBurst burst{begin_at, period, encode_seeded(level_, address, data)};
-  free_at_ = burst.end();
+  free_at_ = begin_at + static_cast<sim::Time>(burst.bits->size()) * period;  // burst.end()
   sent_since_reset_ = true;
-  unit_.repeater().own(std::move(burst));  // last use
+  unit_.repeater().own(std::move(burst), free_at_);  // last use
   idle_.replan();
   return free_at_;
 }

@@ -39,8 +39,9 @@ class TxdOutputs final : public PassedBursts {
     // Inline: the idle fill after each own telegram is such a no-op. What prune() would
     // drop goes at the next change (it never touches the last segment).
     if (own_unbooked_ != nullptr) {  // the line's last segment: the test below on it
-      const LineBurst& own = *own_unbooked_;
-      if (at >= own.end() && condition == LineCondition::Idle && own.bit_period == period) return;
+      if (at >= own_unbooked_end_ && condition == LineCondition::Idle &&
+          own_unbooked_->bit_period == period)
+        return;
       book_own();
     }
     const RxdSegment& last = line_.back();
@@ -53,13 +54,13 @@ class TxdOutputs final : public PassedBursts {
   }
   // serial_unit_pass_through.hpp. Always inline: GCC made it a call at every own telegram.
   [[gnu::always_inline]] inline void line_burst(const LineBurst& burst);
-  // line_burst() of the repeater's own telegram `own` (an element of its queue of own
-  // telegrams, kept there until the next one is pushed): when nothing is to be pruned or
+  // line_burst() of the repeater's own telegram `own` (ending at `end`; an element of its queue of
+  // own telegrams, kept there until the next one is pushed): when nothing is to be pruned or
   // dropped before it, the line is lit and the lone follower is a plain link that takes it,
   // the follower gets it unbooked and the line takes it only when something looks
   // (book_own), as it takes a lazy burst. Else line_burst(). Inline
   // (serial_unit_pass_through.hpp).
-  [[gnu::always_inline]] inline void own_burst(const LineBurst& own);
+  [[gnu::always_inline]] inline void own_burst(const LineBurst& own, sim::Time end);
   // The own telegram own_burst() left out of the line, into it (first: before anything
   // reads or changes the line). Before the repeater pushes another own telegram too.
   void book_own() {
@@ -202,6 +203,7 @@ class TxdOutputs final : public PassedBursts {
   // the repeater's queue of own telegrams, which keeps it until it pushes the next one
   // (book_own() before that).
   const LineBurst* own_unbooked_ = nullptr;
+  sim::Time own_unbooked_end_ = 0;  // its end(), as the repeater worked it out
   sim::Time follower_delay_ = 0;
   // The serial line as announced, in time order, the front in force now: conditions, and
   // bursts (followed by Idle at their rate).

@@ -69,7 +69,7 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   if (dropped || line_.size() < 2 || is_dark(line_[line_.size() - 2])) plan_pins();
 }
 
-inline void TxdOutputs::own_burst(const LineBurst& own) {
+inline void TxdOutputs::own_burst(const LineBurst& own, sim::Time end) {
   // What line_burst() would do here, without its prune, drop and plan of the pins (a line of
   // one lit segment before the telegram) or keeping it: the own telegram stays in the
   // repeater's queue until the line takes it (book_own).
@@ -81,6 +81,7 @@ inline void TxdOutputs::own_burst(const LineBurst& own) {
         lone_link_->pass_checked(own, *this, next, out)) {
       follower_delay_ = out->start - own.start;
       own_unbooked_ = &own;  // first: what `next` is told may come back round to this line
+      own_unbooked_end_ = end;
       return next->line_burst(*out);
     }
   }
@@ -121,14 +122,13 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
 }
 
 // Inline: at every own telegram (SerialTransmitter::send), a call less.
-inline void SerialRepeater::own(LineBurst&& telegram) {
+inline void SerialRepeater::own(LineBurst&& telegram, sim::Time end) {
   // absorb_passed(), its usual case inline: the lazy burst settles, which leaves nothing
   // forwarded and nothing for prune() to drop (settle()).
   if (!unit_.receiver().absorb_lazy_for_own()) {
     absorb_forwarded();
     prune();  // first: the telegram itself is not over (it begins at or after now)
   }
-  const sim::Time end = telegram.end();
   // TxD's line takes the last own telegram before its slot may be reused below (mostly the
   // settle has dropped it: over).
   unit_.outputs().book_own();
@@ -145,7 +145,7 @@ inline void SerialRepeater::own(LineBurst&& telegram) {
   // start, the background segment in force where it ends (joined half-way unless it begins
   // there); else emit_from() from its end, as emit_from(burst.start) goes on.
   if (own_.size() == 1 && !background_.empty()) {
-    unit_.outputs().own_burst(burst);
+    unit_.outputs().own_burst(burst, end);
     if (own_.size() == 1 && background_.back().since <= burst.start) {
       // Joined half-way (it begins before the telegram's end): emit_background's last case,
       // here without the call (mostly the idle fill the line is in anyway, a no-op).

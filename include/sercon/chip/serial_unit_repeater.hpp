@@ -28,8 +28,10 @@ class SerialRepeater {
   void release();
   // RxD announced `segment` (segment.since >= now).
   inline void input(const RxdSegment& segment);  // serial_unit_pass_through.hpp
-  // The transmitter announced an own telegram (burst.start >= now); its bits are taken.
-  [[gnu::always_inline]] inline void own(LineBurst&& telegram);  // serial_unit_pass_through.hpp
+  // The transmitter announced an own telegram (burst.start >= now) ending at `end` (its
+  // end(), worked out once by the sender); its bits are taken.
+  [[gnu::always_inline]] inline void own(LineBurst&& telegram,
+                                         sim::Time end);  // serial_unit_pass_through.hpp
   // REPON or the bit rate changed.
   void refresh();
 
