@@ -44,8 +44,15 @@ Interrupts::Interrupts(RegisterFile& regs, Output int0, Output int1)
         address == polarity || (address >= kIntStat && address <= kIen1B) || address == kWdCtrl;
     // A reset's values are driven by reset(), once all of them are in (INTxPOL is reset
     // before the latches: no pulse out of the half-reset registers).
+    for (const ClearWatch& w : clear_watches_) {
+      if (address == field(w.source).address && !latched(w.source)) w.listener(w.context);
+    }
     if (routed && !regs_.resetting()) refresh();
   });
+}
+
+void Interrupts::on_clear(Irq source, ClearListener listener, void* context) {
+  clear_watches_.push_back(ClearWatch{source, listener, context});
 }
 
 void Interrupts::reset(ResetCause) { refresh(); }

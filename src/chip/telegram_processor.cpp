@@ -49,6 +49,7 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   wants_.header = &list_.wait();
   wants_.other_address_counts = chip.variant() == Variant::Sercon410B;
   serial_.set_interest(this);
+  interrupts_.on_clear(Irq::Tend, &TelegramProcessor::tend_cleared, this);
 }
 
 // Only the scheduler is touched: the time base may be gone (it cancels its own events).
@@ -63,6 +64,8 @@ void TelegramProcessor::reset(ResetCause) {
   stop_receiving();
   wants_.flag_clear = kNone;
   scheduler_.cancel_owned(tend_event_);
+  scheduler_.queue_held(tend_event_);  // no longer held
+  tend_held_ = false;
   scheduler_.cancel(rscend_event_);
   rscend_event_ = {};
   serial_.interest_changed();
@@ -275,16 +278,35 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
     data = transmit_.gather(item, val, port());
   }
   const sim::Time end = serial_.transmitter().send(now, item.adr(), data);
-  // The previous telegram's end may be due at this very instant: raise it now.
+  // The previous telegram's end may be due at this very instant: raise it now. A held one
+  // would find the flag latched (its clear queues it).
   if (scheduler_.owned_pending(tend_event_)) {
     scheduler_.cancel_owned(tend_event_);
-    interrupts_.raise(Irq::Tend);
+    if (!tend_held_) interrupts_.raise(Irq::Tend);
+  }
+  // Mostly INT_TEND is latched (a host clears it now and then): the event is held, not
+  // queued, until the flag is cleared (tend_cleared()).
+  if (interrupts_.latched(Irq::Tend)) [[likely]] {
+    scheduler_.hold_owned(tend_event_, end, &TelegramProcessor::transmission_ended);
+    tend_held_ = true;
+    return;
+  }
+  if (tend_held_) [[unlikely]] {
+    scheduler_.queue_held(tend_event_);  // cancelled: no longer held
+    tend_held_ = false;
   }
   scheduler_.arm_owned(tend_event_, end);
 }
 
 void TelegramProcessor::transmission_ended(void* processor) {
   static_cast<TelegramProcessor*>(processor)->interrupts_.raise(Irq::Tend);
+}
+
+void TelegramProcessor::tend_cleared(void* processor) {
+  auto* const self = static_cast<TelegramProcessor*>(processor);
+  if (!self->tend_held_) return;
+  self->tend_held_ = false;
+  self->scheduler_.queue_held(self->tend_event_);
 }
 
 void TelegramProcessor::end_reached(const ListItem&) { interrupts_.raise(Irq::Endmk); }

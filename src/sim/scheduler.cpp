@@ -244,15 +244,69 @@ Scheduler::OwnedSlot Scheduler::own(Action action, void* context) {
 void Scheduler::disown(OwnedSlot owned) {
   cancel_owned(owned);  // even: not pending
   Slot& slot = slots_[owned];
-  free_actions_.push_back(slot.next_free & ~kOwned);
+  if ((slot.next_free & kHeld) != 0)
+    unhold(static_cast<std::size_t>(std::find(held_.begin(), held_.end(), owned) - held_.begin()));
+  free_actions_.push_back(slot.next_free & kActionIndex);
   slot.context = nullptr;
   ++slot.generation;  // odd, as a taken slot's: free_slot() makes it even again
   free_slot(owned);   // and links it (next_free no longer marks it owned)
 }
 
 std::size_t Scheduler::pending_count() const {
-  return static_cast<std::size_t>(std::count_if(
-      slots_.begin(), slots_.end(), [](const Slot& slot) { return slot.generation % 2 == 1; }));
+  return static_cast<std::size_t>(
+      std::count_if(slots_.begin(), slots_.end(), [&](const Slot& slot) {
+        const bool held = (slot.next_free & kOwned) != 0 && (slot.next_free & kHeld) != 0;
+        return slot.generation % 2 == 1 && !(held && passed(slot));
+      }));
+}
+
+void Scheduler::unhold(std::size_t i) {
+  slots_[held_[i]].next_free &= ~kHeld;
+  held_[i] = held_.back();
+  held_.pop_back();
+}
+
+void Scheduler::queue_held(OwnedSlot owned) {
+  Slot& slot = slots_[owned];
+  if ((slot.next_free & kHeld) == 0) return;
+  unhold(static_cast<std::size_t>(std::find(held_.begin(), held_.end(), owned) - held_.begin()));
+  if (!owned_pending(owned)) return;
+  if (passed(slot)) {
+    ++slot.generation;  // it has run
+    return;
+  }
+  place_deferred(Entry{slot.when, owned, slot.generation});
+}
+
+bool Scheduler::queue_held_through(Time next) {
+  bool queued = false;
+  for (std::size_t i = 0; i < held_.size();) {
+    Slot& slot = slots_[held_[i]];
+    if (slot.when <= next && slot.generation % 2 == 1 && !passed(slot)) {
+      const Entry entry{slot.when, held_[i], slot.generation};
+      unhold(i);
+      place_deferred(entry);
+      queued = true;
+    } else {
+      ++i;
+    }
+  }
+  return queued;
+}
+
+// Before a move to `when`: the held events due then and still ahead go into the queue, each
+// in its place, so the moved event comes after them.
+void Scheduler::queue_held_at(Time when) {
+  for (std::size_t i = 0; i < held_.size();) {
+    Slot& slot = slots_[held_[i]];
+    if (slot.when == when && slot.generation % 2 == 1 && !passed(slot)) {
+      const Entry entry{when, held_[i], slot.generation};
+      unhold(i);
+      place_deferred(entry);
+    } else {
+      ++i;
+    }
+  }
 }
 
 bool Scheduler::move(EventId id, Time when) {
@@ -275,6 +329,22 @@ void Scheduler::move_owned(OwnedSlot owned, Time when) {
 // scheduled before the move, are queued first. A deferred event moved is queued now.
 void Scheduler::requeue(std::uint32_t index, Time when) {
   Slot& slot = slots_[index];
+  // A held event moved: queued now (once passed, it has run: not pending).
+  if ((slot.next_free & kOwned) != 0 && (slot.next_free & kHeld) != 0) {
+    const bool was_passed = passed(slot);
+    unhold(static_cast<std::size_t>(std::find(held_.begin(), held_.end(), index) - held_.begin()));
+    if (was_passed) {
+      ++slot.generation;
+      throw std::logic_error("Scheduler::move_owned: owned slot " + std::to_string(index) +
+                             " is not pending");
+    }
+    if (!held_.empty()) queue_held_at(when);
+    queue_deferred_at(when);
+    slot.when = when;
+    insert(when, index, slot.generation);
+    return;
+  }
+  if (!held_.empty()) queue_held_at(when);
   const auto deferred = std::find_if(
       deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_), deferred_.end(),
       [&](const Entry& e) { return e.slot == index && e.generation == slot.generation; });
@@ -296,7 +366,7 @@ void Scheduler::defer_owned_slowly(OwnedSlot owned, Time when, Action action) {
   Slot& slot = slots_[owned];
   const Entry entry{when, owned, slot.generation = next_generation()};  // odd: live
   slot.when = when;
-  owned_actions_[slot.next_free & ~kOwned] = action;
+  owned_actions_[slot.next_free & kActionIndex] = action;
   if (!deferred_waiting() || when >= deferred_.back().when) {
     deferred_.push_back(entry);
     deferred_last_ = std::max(deferred_last_, when);
@@ -369,6 +439,7 @@ void Scheduler::release(std::uint32_t index) {
 inline void Scheduler::run(const Entry& entry) {
   ++near_.head;
   now_ = entry.when;
+  running_ = entry.generation;
   const std::uint32_t index = entry.slot;
   Slot& slot = slots_[index];
   // Take the event out before running it: it may schedule others (slots_ may grow).
@@ -379,7 +450,7 @@ inline void Scheduler::run(const Entry& entry) {
     action(context);
   } else if ((slot.next_free & kOwned) != 0) {
     ++slot.generation;  // even: no longer pending (the action may arm it again)
-    owned_actions_[slot.next_free & ~kOwned](slot.context);
+    owned_actions_[slot.next_free & kActionIndex](slot.context);
   } else {
     run_callback(index);
   }
@@ -430,6 +501,7 @@ void Scheduler::run_until(Time until) {
   }
   until_ = std::numeric_limits<Time>::max();
   now_ = until;
+  running_ = generation_;
 }
 
 bool Scheduler::step() {

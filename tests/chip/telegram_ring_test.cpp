@@ -363,6 +363,26 @@ TEST_F(Cp4Ring, TendAndEndmkComeAtTheirTimes) {
   EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
 }
 
+// INT_TEND latched when a telegram starts and cleared by the host before its end (the
+// processor holds that event out of the scheduler's queue while the flag is latched): it
+// is latched again at the telegram's end, not before; cleared at that very instant after
+// the end ran, it stays clear.
+TEST_F(Cp4Ring, TendClearedDuringATelegramComesAtItsEnd) {
+  const std::array<std::uint8_t, 8> data{0x11, 0x11, 0x22, 0x22, 0x33, 0x33, 0x44, 0x44};
+  const Time cycle = kTscyc * sim::kMicrosecond;
+  const Time end = e.mdt + cycle + static_cast<Time>(line_bits(0xFF, data)) * t.bit;
+  ring.scheduler.run_until(e.mdt + cycle + t.bit);
+  ASSERT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntTend);
+  ring.chip(0).reg_write(kIntStat, kIntTend);
+  ring.scheduler.run_until(end - 1);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntTend);
+  ring.scheduler.run_until(end);
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntTend);
+  ring.chip(0).reg_write(kIntStat, kIntTend);
+  ring.scheduler.run_until(end + 2 * t.bit);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntTend);
+}
+
 TEST_F(Cp4Ring, SlavesCountCyclesWithoutMstInNmsterr) {
   // Datasheet 4.2: RAM word 10 NMSTERR, "error counter MST". Decision: a slave counts every
   // cycle it free-wheels because no MST came (docs/timing.md, substitute cycle).

@@ -644,6 +644,127 @@ TEST(Scheduler, ADeferredOwnedEventRunsAsAtWouldThroughRandomSteps) {
   expect_twins_agree(run_deferred_twin, 7907u);
 }
 
+// hold_owned() against at(): an owner whose event sets a flag (INT_TEND) holds it while the
+// flag is set and queues it (queue_held()) when an event clears the flag. Events note the
+// flag when they run; clears and notes are often due at the owner's very time, scheduled
+// before and after its hold, some moved there; the owner is armed from outside and from
+// events (also for now), cancelled and moved; run by run_until() and step().
+struct HeldOwner {
+  Scheduler& s;
+  bool& flag;
+  bool held_form;
+  Scheduler::OwnedSlot slot = 0;
+  Scheduler::EventId id{};
+  bool held = false;
+
+  HeldOwner(Scheduler& scheduler, bool& f, bool hold) : s(scheduler), flag(f), held_form(hold) {
+    if (held_form) slot = s.own(&HeldOwner::raise, this);
+  }
+  static void raise(void* self) { static_cast<HeldOwner*>(self)->flag = true; }
+  bool pending() const {
+    if (!held_form) return s.pending(id);
+    return s.owned_pending(slot) && !(held && s.held_passed(slot));
+  }
+  void arm(Time when) {
+    if (!held_form) {
+      id = s.at(when, &HeldOwner::raise, this);
+      return;
+    }
+    if (s.owned_pending(slot)) s.cancel_owned(slot);  // a passed held one
+    if (flag) {
+      s.hold_owned(slot, when, &HeldOwner::raise);
+      held = true;
+      return;
+    }
+    if (held) s.queue_held(slot);
+    held = false;
+    s.arm_owned(slot, when);
+  }
+  void cancel() {
+    if (held_form) {
+      s.cancel_owned(slot);
+    } else {
+      s.cancel(id);
+    }
+  }
+  void move(Time when) {
+    if (!held_form) {
+      EXPECT_TRUE(s.move(id, when));
+      return;
+    }
+    held = false;
+    s.move_owned(slot, when);
+  }
+  void cleared() {
+    if (!held_form || !held) return;
+    held = false;
+    s.queue_held(slot);
+  }
+};
+
+Seen run_held_twin(std::uint32_t seed, bool held_form) {
+  Scheduler s;
+  Seen seen;
+  Draws draws{seed};
+  bool flag = true;
+  HeldOwner owner(s, flag, held_form);
+  Time owner_when = 0;
+  int label = 0;
+  std::vector<Scheduler::EventId> ids;
+  // An event at `when` that notes the flag, clears it (kind 1) or arms the owner (kind 2).
+  std::function<void(Time)> add = [&](Time when) {
+    const int mine = label++;
+    const std::uint32_t kind = draws.below(4);
+    const Time later = static_cast<Time>(draws.below(4)) * 10;
+    ids.push_back(s.at(when, [&, mine, kind, later] {
+      seen.emplace_back(s.now(), mine * 2 + (flag ? 1 : 0));
+      if (kind == 1) {
+        flag = false;
+        owner.cleared();
+      } else if (kind == 2 && !owner.pending()) {
+        owner_when = s.now() + later;
+        owner.arm(owner_when);
+      }
+    }));
+  };
+  for (int round = 0; round < 400; ++round) {
+    for (std::uint32_t i = draws.below(4); i > 0; --i) add(s.now() + near_or_far(draws));
+    const std::uint32_t what = draws.below(7);
+    if (what == 0 && !owner.pending()) {
+      owner_when = s.now() + near_or_far(draws);
+      owner.arm(owner_when);
+    }
+    if (what == 1 && owner.pending()) owner.cancel();
+    if (what == 2 && owner.pending()) {
+      owner_when = s.now() + near_or_far(draws);
+      owner.move(owner_when);
+    }
+    if (what == 3 && owner_when >= s.now()) add(owner_when);
+    if (what == 4 && !ids.empty() && owner_when >= s.now()) {
+      static_cast<void>(
+          s.move(ids[draws.below(static_cast<std::uint32_t>(ids.size()))], owner_when));
+    }
+    if (what == 5) {  // a clear from outside
+      flag = false;
+      owner.cleared();
+    }
+    seen.emplace_back(s.now(), owner.pending() ? -1 : -2);
+    if (draws.below(4) == 0) {
+      const std::optional<Time> next = s.next_time();
+      if (next && *next <= s.now() + 100) s.step();
+    } else {
+      s.run_until(s.now() + run_step(draws));
+    }
+  }
+  s.run_until(s.now() + kMillisecond);
+  seen.emplace_back(s.now(), flag ? -3 : -4);
+  return seen;
+}
+
+TEST(Scheduler, AHeldOwnedEventActsAsAtWouldThroughRandomSteps) {
+  expect_twins_agree(run_held_twin, 7919u);
+}
+
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {
   EXPECT_EQ(period_of_hz(16'000'000), 62'500);  // 16 Mbit/s bit: 62.5 ns
   EXPECT_EQ(period_of_hz(64'000'000), 15'625);  // 64 MHz MCLK: 15.625 ns

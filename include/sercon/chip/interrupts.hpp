@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "sercon/chip/chip_unit.hpp"
 #include "sercon/chip/field_ref.hpp"
@@ -58,6 +59,11 @@ class Interrupts : public ChipUnit {
   void raise_service_container(unsigned container);
 
   bool latched(Irq source) const { return field(source).on(regs_); }
+  // `listener(context)` after every change of `source`'s register that leaves its flag
+  // clear (a write of 1, a reset): for a unit that leaves out an event that would only
+  // raise the flag while it is latched. `context` must outlive the Interrupts.
+  using ClearListener = void (*)(void* context);
+  void on_clear(Irq source, ClearListener listener, void* context);
   bool int0_active() const { return requesting(0); }
   bool int1_active() const { return requesting(1); }
 
@@ -72,6 +78,12 @@ class Interrupts : public ChipUnit {
   FieldRef flags_[kIrqCount];
   FieldRef en0_wdog_, en1_wdog_, en0_rscend_, en1_rscend_;
   FieldRef int0pol_, int1pol_;
+  struct ClearWatch {
+    Irq source;
+    ClearListener listener;
+    void* context;
+  };
+  std::vector<ClearWatch> clear_watches_;
 };
 
 }  // namespace sercon::chip

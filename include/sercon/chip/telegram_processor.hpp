@@ -92,6 +92,7 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   void after_service_work(sim::Time work);
   // Scheduler actions (function + context: no std::function per telegram).
   static void transmission_ended(void* processor);
+  static void tend_cleared(void* processor);  // INT_TEND cleared: a held event is queued
   static void service_work_done(void* processor);
 
   // ListClient
@@ -133,6 +134,9 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   // INT_TEND at the end of each telegram sent: one owned slot for the processor's life.
   sim::Scheduler::OwnedSlot tend_event_ =
       scheduler_.own(&TelegramProcessor::transmission_ended, this);
+  // tend_event_ is held (Scheduler::hold_owned): INT_TEND was latched when it was armed and
+  // has not been cleared since.
+  bool tend_held_ = false;
   sim::Scheduler::EventId rscend_event_{};
   sim::Time rscend_at_ = 0;
   std::uint64_t list_faults_ = 0;

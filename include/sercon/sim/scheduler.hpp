@@ -89,7 +89,7 @@ class Scheduler {
   // several things (a list walk's transmit or end marker). The slot keeps it for later arms.
   void arm_owned(OwnedSlot owned, Time when, Action action) {
     arm_owned(owned, when);  // first: refused, it leaves the slot's action as it was
-    owned_actions_[slots_[owned].next_free & ~kOwned] = action;
+    owned_actions_[slots_[owned].next_free & kActionIndex] = action;
   }
   // arm_owned(owned, when, action) without a queue entry until the run comes to `when` (or
   // something is moved to `when`): the event then takes the place among the events due at
@@ -104,7 +104,7 @@ class Scheduler {
     Slot& slot = slots_[owned];
     const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
-    owned_actions_[slot.next_free & ~kOwned] = action;
+    owned_actions_[slot.next_free & kActionIndex] = action;
     deferred_.push_back(Entry{when, owned, generation});
     deferred_last_ = when;
     // Mostly the first deferred event is this owner's last one, cancelled since (a slave's
@@ -118,6 +118,35 @@ class Scheduler {
     if (deferred_head_ >= kDeferredCompacted && deferred_head_ * 2 >= deferred_.size()) [[unlikely]]
       compact_deferred();
   }
+  // arm_owned(owned, when, action) for an event whose action would change nothing while a
+  // condition of its owner holds (INT_TEND raised with its flag latched): it takes its
+  // order now and no queue entry. Once the run has passed its place (held_passed()) it
+  // counts as run. The owner calls queue_held() the moment the condition ends: ahead still,
+  // the event is queued where arm_owned() would have put it. A move to its time queues it
+  // first, as a deferred event. Same rules as arm_owned(); cancel_owned() and disown() take
+  // it as any other, move_owned() queues it. owned_pending() holds until it is queued or
+  // cancelled, also once passed (pending_count() leaves a passed one out). A slot held once
+  // is held or cancelled until queue_held(): the owner calls it before any other arm.
+  // Inline: a ring holds one at every telegram sent.
+  void hold_owned(OwnedSlot owned, Time when, Action action) {
+    if (when < now_ || owned_pending(owned)) [[unlikely]]
+      refuse_arm("Scheduler::hold_owned", owned, when);
+    Slot& slot = slots_[owned];
+    slot.generation = next_generation();  // odd: live
+    slot.when = when;
+    owned_actions_[slot.next_free & kActionIndex] = action;
+    if ((slot.next_free & kHeld) == 0) [[unlikely]] {  // the slot's first hold since queued
+      slot.next_free |= kHeld;
+      held_.push_back(owned);
+    }
+  }
+  // Whether the run has passed the held event's place: it is before now, or now and
+  // before the event running (all of now once run_until() is done).
+  bool held_passed(OwnedSlot owned) const { return passed(slots_[owned]); }
+  // Queues the held event where arm_owned() at its hold would have put it, if it is still
+  // ahead; a passed one is cancelled (it has run). The slot is no longer held (cancelled,
+  // it may be armed again).
+  void queue_held(OwnedSlot owned);
   // Moves the pending owned event to `when` as move() moves an event: it then runs after
   // the events already due at `when`. Throws std::invalid_argument if `when` is in the past,
   // std::logic_error if the event is not pending.
@@ -189,12 +218,26 @@ class Scheduler {
     std::uint32_t next_free = 0;
   };
   static constexpr std::uint32_t kOwned = 0x8000'0000u;
+  // An owned slot held (hold_owned()) since it was last queued: it is in held_.
+  static constexpr std::uint32_t kHeld = 0x4000'0000u;
+  static constexpr std::uint32_t kActionIndex = 0x3FFF'FFFFu;
   struct Entry {
     Time when;
     std::uint32_t slot;
     std::uint32_t generation;
   };
 
+  // A held event's place passed by the run (held_passed()).
+  bool passed(const Slot& slot) const {
+    return slot.when < now_ || (slot.when == now_ && !earlier(running_, slot.generation));
+  }
+  // Takes held_[i] out of held_ (the slot is no longer held).
+  void unhold(std::size_t i);
+  // Queues the held events due at `when` and ahead, each in its place (before a move there).
+  void queue_held_at(Time when);
+  // Queues the held events ahead due at or before `next`, each in its place; true if it
+  // queued any. For step() and next_time(), which see them as run_until() runs them.
+  bool queue_held_through(Time next);
   // The generation of an event scheduled now (odd; wraps around after 2^31 events).
   std::uint32_t next_generation() { return generation_ += 2; }
   // Whether the event of generation `a` was scheduled before that of `b` (both pending:
@@ -266,7 +309,7 @@ class Scheduler {
   };
 
   // The first queue entry of a pending event, dropping those of cancelled ones; null when
-  // nothing is pending. Deferred events due by then are queued first.
+  // nothing is pending. Deferred and held events due by then are queued first.
   const Entry* front() {
     for (;;) {
       const Entry* first = nullptr;
@@ -281,9 +324,9 @@ class Scheduler {
         refill();
         continue;
       }
-      if (!queue_deferred(first != nullptr ? first->when : std::numeric_limits<Time>::max(),
-                          std::numeric_limits<Time>::max()))
-        return first;
+      const Time next = first != nullptr ? first->when : std::numeric_limits<Time>::max();
+      if (!held_.empty() && queue_held_through(next)) continue;
+      if (!queue_deferred(next, std::numeric_limits<Time>::max())) return first;
     }
   }
   // Deferred events: deferred_[deferred_head_, end), sorted by time (those of one time in
@@ -348,6 +391,10 @@ class Scheduler {
   std::vector<Entry> scratch_;  // sort_near()'s (swapped with near_'s buffer)
   Time near_limit_ = -1;
   std::uint32_t generation_ = 1;  // the last handed out
+  // The generation of the event running or last run; generation_ once run_until() is done
+  // (all events of now have run).
+  std::uint32_t running_ = 1;
+  std::vector<std::uint32_t> held_;  // owned slots with kHeld
   std::vector<Entry> deferred_;
   std::size_t deferred_head_ = 0;
   Time deferred_last_ = std::numeric_limits<Time>::min();  // no deferred_ entry is later
