@@ -50,6 +50,9 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   wants_.other_address_counts = chip.variant() == Variant::Sercon410B;
   serial_.set_interest(this);
   interrupts_.on_clear(Irq::Tend, &TelegramProcessor::tend_cleared, this);
+  interrupts_.on_clear(
+      Irq::Endmk, [](void* tp) { static_cast<TelegramProcessor*>(tp)->list_.end_may_change(); },
+      this);
 }
 
 // Only the scheduler is touched: the time base may be gone (it cancels its own events).
@@ -64,7 +67,6 @@ void TelegramProcessor::reset(ResetCause) {
   stop_receiving();
   wants_.flag_clear = kNone;
   scheduler_.cancel_owned(tend_event_);
-  scheduler_.queue_held(tend_event_);  // no longer held
   tend_held_ = false;
   scheduler_.cancel(rscend_event_);
   rscend_event_ = {};
@@ -291,10 +293,7 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
     tend_held_ = true;
     return;
   }
-  if (tend_held_) [[unlikely]] {
-    scheduler_.queue_held(tend_event_);  // cancelled: no longer held
-    tend_held_ = false;
-  }
+  tend_held_ = false;
   scheduler_.arm_owned(tend_event_, end);
 }
 

@@ -244,8 +244,7 @@ Scheduler::OwnedSlot Scheduler::own(Action action, void* context) {
 void Scheduler::disown(OwnedSlot owned) {
   cancel_owned(owned);  // even: not pending
   Slot& slot = slots_[owned];
-  if ((slot.next_free & kHeld) != 0)
-    unhold(static_cast<std::size_t>(std::find(held_.begin(), held_.end(), owned) - held_.begin()));
+  if ((slot.next_free & kListed) != 0) std::erase(held_, owned);
   free_actions_.push_back(slot.next_free & kActionIndex);
   slot.context = nullptr;
   ++slot.generation;  // odd, as a taken slot's: free_slot() makes it even again
@@ -253,42 +252,35 @@ void Scheduler::disown(OwnedSlot owned) {
 }
 
 std::size_t Scheduler::pending_count() const {
-  return static_cast<std::size_t>(
-      std::count_if(slots_.begin(), slots_.end(), [&](const Slot& slot) {
-        const bool held = (slot.next_free & kOwned) != 0 && (slot.next_free & kHeld) != 0;
-        return slot.generation % 2 == 1 && !(held && passed(slot));
-      }));
+  return static_cast<std::size_t>(std::count_if(
+      slots_.begin(), slots_.end(),
+      [&](const Slot& slot) { return slot.generation % 2 == 1 && !(held(slot) && passed(slot)); }));
 }
 
-void Scheduler::unhold(std::size_t i) {
-  slots_[held_[i]].next_free &= ~kHeld;
-  held_[i] = held_.back();
-  held_.pop_back();
+void Scheduler::queue_held_slot(std::uint32_t index) {
+  Slot& slot = slots_[index];
+  slot.next_free &= ~kHeld;
+  place_deferred(Entry{slot.when, index, slot.generation});
 }
 
 void Scheduler::queue_held(OwnedSlot owned) {
   Slot& slot = slots_[owned];
-  if ((slot.next_free & kHeld) == 0) return;
-  unhold(static_cast<std::size_t>(std::find(held_.begin(), held_.end(), owned) - held_.begin()));
-  if (!owned_pending(owned)) return;
+  if (!held(slot)) return;
   if (passed(slot)) {
+    slot.next_free &= ~kHeld;
     ++slot.generation;  // it has run
     return;
   }
-  place_deferred(Entry{slot.when, owned, slot.generation});
+  queue_held_slot(owned);
 }
 
 bool Scheduler::queue_held_through(Time next) {
   bool queued = false;
-  for (std::size_t i = 0; i < held_.size();) {
-    Slot& slot = slots_[held_[i]];
-    if (slot.when <= next && slot.generation % 2 == 1 && !passed(slot)) {
-      const Entry entry{slot.when, held_[i], slot.generation};
-      unhold(i);
-      place_deferred(entry);
+  for (const std::uint32_t index : held_) {
+    const Slot& slot = slots_[index];
+    if (held(slot) && slot.when <= next && !passed(slot)) {
+      queue_held_slot(index);
       queued = true;
-    } else {
-      ++i;
     }
   }
   return queued;
@@ -297,15 +289,9 @@ bool Scheduler::queue_held_through(Time next) {
 // Before a move to `when`: the held events due then and still ahead go into the queue, each
 // in its place, so the moved event comes after them.
 void Scheduler::queue_held_at(Time when) {
-  for (std::size_t i = 0; i < held_.size();) {
-    Slot& slot = slots_[held_[i]];
-    if (slot.when == when && slot.generation % 2 == 1 && !passed(slot)) {
-      const Entry entry{when, held_[i], slot.generation};
-      unhold(i);
-      place_deferred(entry);
-    } else {
-      ++i;
-    }
+  for (const std::uint32_t index : held_) {
+    const Slot& slot = slots_[index];
+    if (held(slot) && slot.when == when && !passed(slot)) queue_held_slot(index);
   }
 }
 
@@ -330,10 +316,9 @@ void Scheduler::move_owned(OwnedSlot owned, Time when) {
 void Scheduler::requeue(std::uint32_t index, Time when) {
   Slot& slot = slots_[index];
   // A held event moved: queued now (once passed, it has run: not pending).
-  if ((slot.next_free & kOwned) != 0 && (slot.next_free & kHeld) != 0) {
-    const bool was_passed = passed(slot);
-    unhold(static_cast<std::size_t>(std::find(held_.begin(), held_.end(), index) - held_.begin()));
-    if (was_passed) {
+  if (held(slot)) {
+    slot.next_free &= ~kHeld;
+    if (passed(slot)) {
       ++slot.generation;
       throw std::logic_error("Scheduler::move_owned: owned slot " + std::to_string(index) +
                              " is not pending");
@@ -366,6 +351,7 @@ void Scheduler::defer_owned_slowly(OwnedSlot owned, Time when, Action action) {
   Slot& slot = slots_[owned];
   const Entry entry{when, owned, slot.generation = next_generation()};  // odd: live
   slot.when = when;
+  slot.next_free &= ~kHeld;
   owned_actions_[slot.next_free & kActionIndex] = action;
   if (!deferred_waiting() || when >= deferred_.back().when) {
     deferred_.push_back(entry);

@@ -383,6 +383,18 @@ TEST_F(Cp4Ring, TendClearedDuringATelegramComesAtItsEnd) {
   EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntTend);
 }
 
+// The same for INT_ENDMK: latched when the walk reaches the end marker, cleared by the host
+// before the step out of TEND, latched again at that step.
+TEST_F(Cp4Ring, EndmkClearedBeforeTheEndMarkerComesAtItsTime) {
+  const Time endmk = cycle_time(first, kMasterEnd, t) + kTscyc * sim::kMicrosecond;
+  ring.scheduler.run_until(endmk - 1);
+  ASSERT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+  ring.chip(0).reg_write(kIntStat, kIntEndmk);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+  ring.scheduler.run_until(endmk);
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+}
+
 TEST_F(Cp4Ring, SlavesCountCyclesWithoutMstInNmsterr) {
   // Datasheet 4.2: RAM word 10 NMSTERR, "error counter MST". Decision: a slave counts every
   // cycle it free-wheels because no MST came (docs/timing.md, substitute cycle).

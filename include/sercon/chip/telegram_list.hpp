@@ -51,6 +51,9 @@ class ListClient {
   // The walk moved on by itself (an item's time came, a window closed) and what offer()
   // would answer may have changed: a receive header waited before or waits now.
   virtual void list_moved() = 0;
+  // end_reached() would change nothing now (INT_ENDMK latched): the end marker's event is
+  // then held out of the scheduler's queue until end_may_change() is called on the list.
+  virtual bool end_changes_nothing() const { return false; }
 };
 
 // The walk's names that do not depend on its client.
@@ -133,6 +136,13 @@ class BasicTelegramList : public TelegramListTypes {
   // detection): the list stops for the rest of the cycle, as for a fault found by the walk,
   // and the client is told (list_fault).
   void abort(const ListFault& fault) { this->fault(fault); }
+  // What end_reached() does may have changed (INT_ENDMK cleared): a held end marker's event
+  // is queued where it would have been.
+  void end_may_change() {
+    if (!end_held_) return;
+    end_held_ = false;
+    time_base_.queue_held(event_);
+  }
 
  private:
   // Held: a receive header took an address-255 telegram, whose detection is awaited.
@@ -154,6 +164,7 @@ class BasicTelegramList : public TelegramListTypes {
   // Mostly neither is armed (a receive header without TCHK waits, or the end marker ran).
   void cancel_event() {
     event_.cancel();
+    end_held_ = false;
     cancel_window_judge();
   }
   void cancel_window_judge() {
@@ -191,6 +202,7 @@ class BasicTelegramList : public TelegramListTypes {
   State state_ = State::Idle;
   ListItem item_;
   TimeBase::OwnedEvent event_;              // transmit or end marker due
+  bool end_held_ = false;                   // event_ is an end marker held (hold_at_cycle_time)
   sim::Scheduler::EventId window_judge_{};  // a TCHK header's window is over
   HeaderWait wait_;  // state_ == Receive, and the header's window and address
   // Items the walk may still read in this cycle: every item takes at least two words, so a

@@ -138,14 +138,19 @@ bool BasicTelegramList<Client>::arm(const ListItem& item) {
       return true;
     case telegram::Kind::Receive:
       return arm_receive(item);
-    case telegram::Kind::EndMarker:
-      if (!time_base_.at_cycle_time(event_, item.time, &BasicTelegramList::end_time)) {
+    case telegram::Kind::EndMarker: {
+      // Mostly INT_ENDMK is latched: the event is held, not queued (end_may_change()).
+      const bool hold = client_.end_changes_nothing();
+      if (!(hold ? time_base_.hold_at_cycle_time(event_, item.time, &BasicTelegramList::end_time)
+                 : time_base_.at_cycle_time(event_, item.time, &BasicTelegramList::end_time))) {
         set_state(State::Idle);
         client_.end_reached(item);
         return false;
       }
+      end_held_ = hold;
       set_state(State::End);
       return true;
+    }
     case telegram::Kind::Invalid:
       break;
   }

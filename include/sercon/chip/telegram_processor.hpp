@@ -99,6 +99,7 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   void transmit_due(const ListItem& item) override;
   void receive_missed(const ListItem& item) override;
   void end_reached(const ListItem& item) override;
+  bool end_changes_nothing() const override { return interrupts_.latched(Irq::Endmk); }
   void list_fault(const ListFault& fault) override;
   sim::Time start_report_delay() const override;
   void list_moved() override;

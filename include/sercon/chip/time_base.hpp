@@ -178,6 +178,19 @@ class TimeBase : public ChipUnit {
     owned.asked_ = ++asked_;
     return true;
   }
+  // The same, held (Scheduler::hold_owned): for an event whose action would change nothing
+  // (INT_ENDMK raised while latched); the owner calls queue_held() when that may change.
+  [[gnu::always_inline]] bool hold_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
+                                                 sim::Scheduler::Action action) {
+    const std::optional<sim::Time> step = step_ahead(cycle_time);
+    if (!step) return false;
+    scheduler_.hold_owned(owned.slot_, *step, action);
+    owned.cycle_time_ = cycle_time;
+    owned.when_ = *step;
+    owned.asked_ = ++asked_;
+    return true;
+  }
+  void queue_held(OwnedEvent& owned) { scheduler_.queue_held(owned.slot_); }
   void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
   std::optional<sim::Time> when(CycleEvent event) const {

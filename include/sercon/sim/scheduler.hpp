@@ -65,6 +65,7 @@ class Scheduler {
     Slot& slot = slots_[owned];
     const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
+    slot.next_free &= ~kHeld;
     insert(when, owned, generation);
   }
   // arm_owned(owned, now()): the owned event runs right after the events already due now
@@ -77,6 +78,7 @@ class Scheduler {
     Slot& slot = slots_[owned];
     const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = now_;
+    slot.next_free &= ~kHeld;
     SortedRun& run = near_;
     if (run.head > 0 && now_ <= near_limit_ &&
         (run.head == run.tail || run.buffer[run.head].when > now_)) {
@@ -104,6 +106,7 @@ class Scheduler {
     Slot& slot = slots_[owned];
     const std::uint32_t generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
+    slot.next_free &= ~kHeld;
     owned_actions_[slot.next_free & kActionIndex] = action;
     deferred_.push_back(Entry{when, owned, generation});
     deferred_last_ = when;
@@ -125,27 +128,25 @@ class Scheduler {
   // the event is queued where arm_owned() would have put it. A move to its time queues it
   // first, as a deferred event. Same rules as arm_owned(); cancel_owned() and disown() take
   // it as any other, move_owned() queues it. owned_pending() holds until it is queued or
-  // cancelled, also once passed (pending_count() leaves a passed one out). A slot held once
-  // is held or cancelled until queue_held(): the owner calls it before any other arm.
-  // Inline: a ring holds one at every telegram sent.
+  // cancelled, also once passed (pending_count() leaves a passed one out).
+  // Inline: a ring holds one at every telegram sent and at every end marker.
   void hold_owned(OwnedSlot owned, Time when, Action action) {
     if (when < now_ || owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::hold_owned", owned, when);
     Slot& slot = slots_[owned];
     slot.generation = next_generation();  // odd: live
     slot.when = when;
-    owned_actions_[slot.next_free & kActionIndex] = action;
-    if ((slot.next_free & kHeld) == 0) [[unlikely]] {  // the slot's first hold since queued
-      slot.next_free |= kHeld;
+    const std::uint32_t flags = slot.next_free;
+    owned_actions_[flags & kActionIndex] = action;
+    if ((flags & kListed) == 0) [[unlikely]]  // the slot's first hold
       held_.push_back(owned);
-    }
+    slot.next_free = flags | kHeld | kListed;
   }
   // Whether the run has passed the held event's place: it is before now, or now and
   // before the event running (all of now once run_until() is done).
   bool held_passed(OwnedSlot owned) const { return passed(slots_[owned]); }
   // Queues the held event where arm_owned() at its hold would have put it, if it is still
-  // ahead; a passed one is cancelled (it has run). The slot is no longer held (cancelled,
-  // it may be armed again).
+  // ahead; a passed one is cancelled (it has run). Nothing if it is not held.
   void queue_held(OwnedSlot owned);
   // Moves the pending owned event to `when` as move() moves an event: it then runs after
   // the events already due at `when`. Throws std::invalid_argument if `when` is in the past,
@@ -218,9 +219,11 @@ class Scheduler {
     std::uint32_t next_free = 0;
   };
   static constexpr std::uint32_t kOwned = 0x8000'0000u;
-  // An owned slot held (hold_owned()) since it was last queued: it is in held_.
+  // An owned slot held (hold_owned()) and neither armed nor queued since: pending while its
+  // generation is odd. kListed: the slot is in held_ (from its first hold on).
   static constexpr std::uint32_t kHeld = 0x4000'0000u;
-  static constexpr std::uint32_t kActionIndex = 0x3FFF'FFFFu;
+  static constexpr std::uint32_t kListed = 0x2000'0000u;
+  static constexpr std::uint32_t kActionIndex = 0x1FFF'FFFFu;
   struct Entry {
     Time when;
     std::uint32_t slot;
@@ -228,11 +231,16 @@ class Scheduler {
   };
 
   // A held event's place passed by the run (held_passed()).
-  bool passed(const Slot& slot) const {
-    return slot.when < now_ || (slot.when == now_ && !earlier(running_, slot.generation));
+  bool passed(Time when, std::uint32_t generation) const {
+    return when < now_ || (when == now_ && !earlier(running_, generation));
   }
-  // Takes held_[i] out of held_ (the slot is no longer held).
-  void unhold(std::size_t i);
+  bool passed(const Slot& slot) const { return passed(slot.when, slot.generation); }
+  // The event of `slot` is held now (pending, and held since it was last armed).
+  static bool held(const Slot& slot) {
+    return (slot.next_free & (kOwned | kHeld)) == (kOwned | kHeld) && slot.generation % 2 == 1;
+  }
+  // Queues the held event of `index`, ahead still, in its place.
+  void queue_held_slot(std::uint32_t index);
   // Queues the held events due at `when` and ahead, each in its place (before a move there).
   void queue_held_at(Time when);
   // Queues the held events ahead due at or before `next`, each in its place; true if it
@@ -394,7 +402,7 @@ class Scheduler {
   // The generation of the event running or last run; generation_ once run_until() is done
   // (all events of now have run).
   std::uint32_t running_ = 1;
-  std::vector<std::uint32_t> held_;  // owned slots with kHeld
+  std::vector<std::uint32_t> held_;  // the owned slots with kListed
   std::vector<Entry> deferred_;
   std::size_t deferred_head_ = 0;
   Time deferred_last_ = std::numeric_limits<Time>::min();  // no deferred_ entry is later
