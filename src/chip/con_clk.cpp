@@ -37,7 +37,7 @@ ConClk::ConClk(TimeBase& time_base, Interrupts& interrupts, Output pin)
 
 void ConClk::reset(ResetCause) {
   time_base_.cancel(planned_);
-  planned_ = 0;
+  planned_ = {};
   end_.cancel();
   active_ = false;
   drive();
@@ -45,12 +45,12 @@ void ConClk::reset(ResetCause) {
 }
 
 void ConClk::refresh_idle() {
-  time_base_.set_cycle_listener_idle(listener_,
-                                     width_ == 0 && planned_ == 0 && regs_.value(kWconclk) == 0);
+  time_base_.set_cycle_listener_idle(
+      listener_, width_ == 0 && planned_ == TimeBase::CycleEvent{} && regs_.value(kWconclk) == 0);
 }
 
 void ConClk::plan(const CycleStart& start) {
-  planned_ = 0;  // the time base dropped the previous cycle's event
+  planned_ = {};  // the time base dropped the previous cycle's event
   const std::int64_t cycle_end = start.tscyc == 0 ? kUnprogrammedCycleEnd : start.tscyc;
   const std::uint16_t at = regs_.value(kTconclk);
   // Taken now, as TCONCLK: a WCONCLK written within the cycle acts from the next cycle start

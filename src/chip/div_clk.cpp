@@ -101,7 +101,7 @@ void DivClk::plan(const CycleStart& start) {
 
 void DivClk::plan_pulse_at(std::int64_t cycle_time) {
   const auto id = time_base_.at_cycle_time(cycle_time, [this] { pulse_starts(); });
-  if (id != 0) planned_.push_back(id);
+  if (id != TimeBase::CycleEvent{}) planned_.push_back(id);
 }
 
 // INT_DIVCLK ("A DIV_CLK pulse began") last: the pin callbacks it runs see the pulse.

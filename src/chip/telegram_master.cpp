@@ -29,7 +29,7 @@ bool MasterMst::send() {
   if (out_ && !judged_) error();  // the last one never came back, and had no window
   out_ = false;
   time_base_.cancel(window_end_);
-  window_end_ = 0;
+  window_end_ = {};
   const sim::Time now = time_base_.scheduler().now();
   // The transmitter itself (SerialUnit's send and transmit_free_at are calls into it).
   if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmitter().free_at()) {
@@ -48,7 +48,7 @@ bool MasterMst::send() {
 }
 
 void MasterMst::window_ends() {
-  window_end_ = 0;
+  window_end_ = {};
   if (!out_ || judged_) return;
   judged_ = true;
   error();
@@ -58,7 +58,7 @@ void MasterMst::returned() {
   if (!out_) return;  // none of this cycle's is out: sent none, or it is back already
   out_ = false;
   time_base_.cancel(window_end_);
-  window_end_ = 0;
+  window_end_ = {};
   // Measured whenever it comes back, even after the window closed on it: a driver whose
   // ring delay grew past JTRDEL2 reads the new delay here to move the window.
   const std::uint16_t at = time_base_.tcnt();

@@ -96,11 +96,11 @@ void TimeBase::prune() {
 TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
                                              std::function<void()> callback) {
   const std::optional<sim::Time> step = step_ahead(cycle_time);
-  if (!step) return 0;
+  if (!step) return {};
   if (planned_.size() == planned_.capacity()) prune();
   const sim::Scheduler::EventId event = scheduler_.at(*step, std::move(callback));
   planned_.push_back(Planned{event, cycle_time, *step, ++asked_});
-  return event.value;
+  return event;
 }
 
 std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) const {

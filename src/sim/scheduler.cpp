@@ -128,7 +128,7 @@ void Scheduler::LaterEntries::insert_deferred(const Entry& entry) {
 // Takes a pending event's entry out (it is there: live entries are never passed over).
 // The live entry: a cancelled event's entry may still sit at the same time with the same
 // slot (reused since), told apart by its generation.
-void Scheduler::SortedRun::remove(Time when, std::uint32_t slot, std::uint32_t generation) {
+void Scheduler::SortedRun::remove(Time when, std::uint32_t slot, Generation generation) {
   Entry* const last = buffer.data() + tail;
   Entry* at = std::lower_bound(buffer.data() + head, last, when,
                                [](const Entry& e, Time t) { return e.when < t; });
@@ -138,7 +138,7 @@ void Scheduler::SortedRun::remove(Time when, std::uint32_t slot, std::uint32_t g
 }
 
 // Takes a pending event's entry out of far_ (it is there), keeping the others' order.
-void Scheduler::LaterEntries::remove(std::uint32_t slot, std::uint32_t generation) {
+void Scheduler::LaterEntries::remove(std::uint32_t slot, Generation generation) {
   const auto at = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
     return e.slot == slot && e.generation == generation;
   });
@@ -298,7 +298,7 @@ void Scheduler::queue_held_at(Time when) {
 bool Scheduler::move(EventId id, Time when) {
   if (when < now_) throw_past("Scheduler::move", when, now_);
   if (live_slot(id) == nullptr) return false;
-  requeue(static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1), when);
+  requeue(id.slot, when);
   return true;
 }
 
@@ -458,6 +458,16 @@ void Scheduler::run_callback(std::uint32_t index) {
 void Scheduler::run_until(Time until) {
   if (until < now_) throw_past("Scheduler::run_until", until, now_);
   Signal::Steps steps;
+  // An event may run the scheduler itself: the outer run's until_ (and so its stop_) is
+  // put back when this one ends, also by an exception.
+  struct RestoreUntil {
+    Scheduler& scheduler;
+    Time outer;
+    ~RestoreUntil() {
+      scheduler.until_ = outer;
+      scheduler.set_stop();
+    }
+  } restore{*this, until_};
   until_ = until;
   set_stop();
   for (;;) {
@@ -485,7 +495,6 @@ void Scheduler::run_until(Time until) {
     run(entry);
     steps.done();
   }
-  until_ = std::numeric_limits<Time>::max();
   now_ = until;
   running_ = generation_;
 }

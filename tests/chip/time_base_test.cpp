@@ -255,7 +255,8 @@ TEST(TimeBase, CycleTimeEventsRunAtTheStep) {
   b.run_to(loaded);
   std::vector<Time> ran;
   auto& tb = b.time_base();
-  EXPECT_EQ(tb.at_cycle_time(1, [&] { ran.push_back(b.now()); }), 0u);  // before TCNTST
+  EXPECT_EQ(tb.at_cycle_time(1, [&] { ran.push_back(b.now()); }),
+            TimeBase::CycleEvent{});  // before TCNTST
   tb.at_cycle_time(2, [&] { ran.push_back(b.now()); });
   tb.at_cycle_time(100, [&] { ran.push_back(b.now()); });
   const auto dropped = tb.at_cycle_time(400, [&] { ran.push_back(b.now()); });
@@ -391,7 +392,8 @@ TEST(TimeBase, CycleTimeActionsRunLikeCallbacks) {
   } mark{&ran, &b};
   const auto action = tb.at_cycle_time(20, &Mark::run, &mark);
   tb.at_cycle_time(20, [&] { ran.emplace_back('c', b.now()); });
-  EXPECT_EQ(tb.at_cycle_time(1, &Mark::run, &mark), 0u);  // before TCNTST: never
+  EXPECT_EQ(tb.at_cycle_time(1, &Mark::run, &mark),
+            TimeBase::CycleEvent{});  // before TCNTST: never
   ASSERT_TRUE(tb.when(action).has_value());
   const Time due = *tb.when(action);
   b.run_to(100 * kMicrosecond);
@@ -417,7 +419,7 @@ TEST(TimeBase, CycleEventIdsAreNeverReusedAndOrderIsKept) {
   std::vector<char> ran;
   const auto first = tb.at_cycle_time(10, [&] { ran.push_back('a'); });
   const auto second = tb.at_cycle_time(20, [&] { ran.push_back('b'); });
-  ASSERT_NE(first, 0u);
+  ASSERT_NE(first, TimeBase::CycleEvent{});
   tb.cancel(first);
   const auto third = tb.at_cycle_time(20, [&] { ran.push_back('c'); });  // first's slot
   EXPECT_NE(third, first);

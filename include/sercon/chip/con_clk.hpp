@@ -46,7 +46,7 @@ class ConClk : public ChipUnit {
   FieldRef polconclk_;
   bool active_ = false;
   std::int64_t width_ = 0;  // WCONCLK (µs) taken at the cycle start
-  TimeBase::CycleEvent planned_ = 0;
+  TimeBase::CycleEvent planned_{};
   TickAlarm end_;
   TimeBase::CycleListenerId listener_ = 0;
 };

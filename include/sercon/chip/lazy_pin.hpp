@@ -39,7 +39,7 @@ class LazyPin {
     if (!idle()) plan(false);
   }
   // Nobody watches the pin and no change is planned: replan() would do nothing.
-  bool idle() const { return event_.value == 0 && !signal_.watched(); }
+  bool idle() const { return event_ == sim::Scheduler::EventId{} && !signal_.watched(); }
 
  private:
   static sim::Level provide(const void* self);

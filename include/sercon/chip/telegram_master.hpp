@@ -45,7 +45,7 @@ class MasterMst {
   // outside the window) is counted, so a late return only measures TCYCDEL.
   bool out_ = false;
   bool judged_ = false;
-  TimeBase::CycleEvent window_end_ = 0;
+  TimeBase::CycleEvent window_end_{};
 };
 
 }  // namespace sercon::chip

@@ -46,7 +46,7 @@ class TimeBase : public ChipUnit {
   static constexpr std::uint8_t kTscyc1Register = 0x10;
   static constexpr std::uint8_t kTcntstRegister = 0x13;
 
-  using CycleEvent = std::uint64_t;  // 0 names no event
+  using CycleEvent = sim::Scheduler::EventId;  // CycleEvent{} names no event
 
   explicit TimeBase(Chip& chip);
   TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid& mclk);
@@ -117,11 +117,11 @@ class TimeBase : public ChipUnit {
   [[gnu::always_inline]] CycleEvent at_cycle_time(std::int64_t cycle_time,
                                                   sim::Scheduler::Action action, void* context) {
     const std::optional<sim::Time> step = step_ahead(cycle_time);
-    if (!step) return 0;
+    if (!step) return {};
     if (planned_.size() == planned_.capacity()) prune();
     const sim::Scheduler::EventId event = scheduler_.at(*step, action, context);
     planned_.push_back(Planned{event, cycle_time, *step, ++asked_});
-    return event.value;
+    return event;
   }
   // A cycle-time event its owner keeps in place, for an owner with at most one pending at a
   // time that arms several a cycle (a list walk, the MST window): one owned scheduler slot
@@ -191,11 +191,9 @@ class TimeBase : public ChipUnit {
     return true;
   }
   void queue_held(OwnedEvent& owned) { scheduler_.queue_held(owned.slot_); }
-  void cancel(CycleEvent event) { scheduler_.cancel(sim::Scheduler::EventId{event}); }
+  void cancel(CycleEvent event) { scheduler_.cancel(event); }
   // When a pending event will run; nullopt once it ran, was cancelled or dropped.
-  std::optional<sim::Time> when(CycleEvent event) const {
-    return scheduler_.when(sim::Scheduler::EventId{event});
-  }
+  std::optional<sim::Time> when(CycleEvent event) const { return scheduler_.when(event); }
   // When the step out of `cycle_time` will happen in the running cycle, if it is ahead.
   std::optional<sim::Time> time_of_cycle_time(std::int64_t cycle_time) const;
   // When the step out of `cycle_time` happened in the running cycle, if it has (at or

@@ -19,8 +19,13 @@ class Scheduler {
   using Callback = std::function<void()>;
   // The allocation-free form for hot users: `action(context)` runs at the event's time.
   using Action = void (*)(void* context);
+  // An event's place in the order of scheduling (next_generation()).
+  using Generation = std::uint64_t;
+  // An event's generation and its slot's index. No two events share a generation (64 bits
+  // do not wrap), so a stale id never names a later event; EventId{} names none.
   struct EventId {
-    std::uint64_t value = 0;  // 0 never names an event
+    Generation generation = 0;
+    std::uint32_t slot = 0;
     friend bool operator==(EventId, EventId) = default;
   };
 
@@ -63,7 +68,7 @@ class Scheduler {
     if (when < now_ || owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned", owned, when);
     Slot& slot = slots_[owned];
-    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
+    const Generation generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
     slot.next_free &= ~kHeld;
     insert(when, owned, generation);
@@ -76,7 +81,7 @@ class Scheduler {
     if (owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned_now", owned, now_);
     Slot& slot = slots_[owned];
-    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
+    const Generation generation = slot.generation = next_generation();  // odd: live
     slot.when = now_;
     slot.next_free &= ~kHeld;
     SortedRun& run = near_;
@@ -104,7 +109,7 @@ class Scheduler {
     if (when <= now_ || owned_pending(owned) || when < deferred_last_) [[unlikely]]
       return defer_owned_slowly(owned, when, action);
     Slot& slot = slots_[owned];
-    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
+    const Generation generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
     slot.next_free &= ~kHeld;
     owned_actions_[slot.next_free & kActionIndex] = action;
@@ -164,7 +169,7 @@ class Scheduler {
   // Inline: most calls name an event that already ran.
   bool cancel(EventId id) {
     if (live_slot(id) == nullptr) return false;
-    const auto index = static_cast<std::uint32_t>((id.value & 0xFFFF'FFFFu) - 1);
+    const std::uint32_t index = id.slot;
     // An action's slot holds no callback to release.
     if (slots_[index].action != nullptr) {
       free_slot(index);
@@ -200,8 +205,8 @@ class Scheduler {
   // Events live in reusable slots (no allocation per event once the vectors have grown).
   // A slot's generation is odd while it holds an event: each event scheduled takes the next
   // odd number of one count (next_generation()), and a slot's goes up by one (even) when
-  // its event runs or is cancelled; an EventId is the slot's index + 1 and that odd
-  // generation, so a stale id does not match a reused slot (for 2^31 events). The queue
+  // its event runs or is cancelled; an EventId is that odd generation and the slot's index,
+  // so a stale id never matches a reused slot (generations are not reused). The queue
   // holds only {time, slot, generation}, sorted by time; an event goes in after every entry
   // of its time, so same-time events keep their scheduling order. A deferred event, queued
   // later, finds its place among them by generation: the generations say the order in which
@@ -213,7 +218,7 @@ class Scheduler {
     void* context = nullptr;
     Callback callback;
     Time when = 0;
-    std::uint32_t generation = 0;
+    Generation generation = 2;  // even: free; never 0, which EventId{} would match
     // Free list link: index + 1, 0 ends the list. An owned slot (never on the list):
     // kOwned | its action's index in owned_actions_.
     std::uint32_t next_free = 0;
@@ -227,11 +232,11 @@ class Scheduler {
   struct Entry {
     Time when;
     std::uint32_t slot;
-    std::uint32_t generation;
+    Generation generation;
   };
 
   // A held event's place passed by the run (held_passed()).
-  bool passed(Time when, std::uint32_t generation) const {
+  bool passed(Time when, Generation generation) const {
     return when < now_ || (when == now_ && !earlier(running_, generation));
   }
   bool passed(const Slot& slot) const { return passed(slot.when, slot.generation); }
@@ -246,13 +251,10 @@ class Scheduler {
   // Queues the held events ahead due at or before `next`, each in its place; true if it
   // queued any. For step() and next_time(), which see them as run_until() runs them.
   bool queue_held_through(Time next);
-  // The generation of an event scheduled now (odd; wraps around after 2^31 events).
-  std::uint32_t next_generation() { return generation_ += 2; }
-  // Whether the event of generation `a` was scheduled before that of `b` (both pending:
-  // scheduled fewer than 2^31 events apart).
-  static bool earlier(std::uint32_t a, std::uint32_t b) {
-    return static_cast<std::int32_t>(a - b) < 0;
-  }
+  // The generation of an event scheduled now (odd; 64 bits: never used up).
+  Generation next_generation() { return generation_ += 2; }
+  // Whether the event of generation `a` was scheduled before that of `b`.
+  static bool earlier(Generation a, Generation b) { return a < b; }
   [[noreturn]] void refuse_past(const char* what, Time when) const;
   // arm_owned() refused: `when` in the past, or the owned event pending already.
   [[noreturn, gnu::cold]] void refuse_arm(const char* what, OwnedSlot owned, Time when) const;
@@ -263,10 +265,10 @@ class Scheduler {
   EventId take_slot(std::uint32_t index, Time when) {
     Slot& slot = slots_[index];
     free_head_ = slot.next_free;
-    const std::uint32_t generation = slot.generation = next_generation();  // odd: live
+    const Generation generation = slot.generation = next_generation();  // odd: live
     slot.when = when;
     insert(when, index, generation);
-    return EventId{std::uint64_t{generation} << 32 | (index + 1u)};
+    return EventId{generation, index};
   }
   void free_slot(std::uint32_t index) {
     Slot& slot = slots_[index];
@@ -277,10 +279,9 @@ class Scheduler {
   void release(std::uint32_t index);             // cancels a live slot
   void requeue(std::uint32_t index, Time when);  // a pending event's entry, to `when`
   const Slot* live_slot(EventId id) const {
-    const std::uint64_t index = (id.value & 0xFFFF'FFFFu);
-    if (index == 0 || index > slots_.size()) return nullptr;
-    const Slot& slot = slots_[index - 1];
-    return slot.generation == static_cast<std::uint32_t>(id.value >> 32) ? &slot : nullptr;
+    if (id.slot >= slots_.size()) return nullptr;
+    const Slot& slot = slots_[id.slot];
+    return slot.generation == id.generation ? &slot : nullptr;
   }
   // A run of entries sorted by `when`, the earliest first: buffer[head, tail); the
   // buffer is only storage (its size is the capacity). With a couple of dozen entries a
@@ -298,7 +299,7 @@ class Scheduler {
     void insert(const Entry& entry);
     // A deferred event's entry: after the entries of its time scheduled before it.
     void insert_deferred(const Entry& entry);
-    void remove(Time when, std::uint32_t slot, std::uint32_t generation);
+    void remove(Time when, std::uint32_t slot, Generation generation);
     void make_room();
   };
   // The entries due after near_limit_, in the order they were queued (far_ below).
@@ -312,7 +313,7 @@ class Scheduler {
       entries.push_back(entry);
       earliest = std::min(earliest, entry.when);
     }
-    void remove(std::uint32_t slot, std::uint32_t generation);
+    void remove(std::uint32_t slot, Generation generation);
     void insert_deferred(const Entry& entry);  // as SortedRun's, in scheduling order
   };
 
@@ -359,7 +360,7 @@ class Scheduler {
   // others only a few places behind its front (few entries are due sooner): they walk there
   // from the front, moving those few one place towards the entries that have run. An entry
   // due later goes at the back of far_, which is kept in scheduling order, not sorted.
-  void insert(Time when, std::uint32_t slot, std::uint32_t generation) {
+  void insert(Time when, std::uint32_t slot, Generation generation) {
     if (when > near_limit_) [[unlikely]]
       return far_.push_back(Entry{when, slot, generation});
     SortedRun& run = near_;
@@ -398,10 +399,10 @@ class Scheduler {
   LaterEntries far_;
   std::vector<Entry> scratch_;  // sort_near()'s (swapped with near_'s buffer)
   Time near_limit_ = -1;
-  std::uint32_t generation_ = 1;  // the last handed out
+  Generation generation_ = 1;  // the last handed out
   // The generation of the event running or last run; generation_ once run_until() is done
   // (all events of now have run).
-  std::uint32_t running_ = 1;
+  Generation running_ = 1;
   std::vector<std::uint32_t> held_;  // the owned slots with kListed
   std::vector<Entry> deferred_;
   std::size_t deferred_head_ = 0;
@@ -409,6 +410,7 @@ class Scheduler {
   Time until_ = std::numeric_limits<Time>::max();          // run_until()'s, while it runs
   Time stop_ = std::numeric_limits<Time>::max();
   std::vector<Slot> slots_;
+  std::vector<Callback> callbacks_;          // of slots_ (same index); set only for at(Callback)
   std::uint32_t free_head_ = 0;              // index + 1 of the first free slot, 0: none
   std::vector<Action> owned_actions_;        // of the owned slots (Slot::next_free)
   std::vector<std::uint32_t> free_actions_;  // owned_actions_ indices given back (disown)
