@@ -19,8 +19,8 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
   // A chain of lazy hops goes on here from receiver to receiver, one turn per hop (a call
   // per hop cost as much as the hop's checks), counted in chain_depth as the calls were.
   struct Links {
-    int taken = 0;
-    ~Links() { chain_depth -= taken; }
+    int before = chain_depth;
+    ~Links() { chain_depth = before; }  // the calls out of the loop count up and down as many
   } links;
   check(burst);  // those handed on by pass_through have bits and a bit period (line.hpp)
   SerialReceiver* at = this;
@@ -33,7 +33,6 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
       return at->announce(*b);
     }
     ++chain_depth;
-    ++links.taken;
     SerialReceiver* const r = next->receiver();
     if (r == nullptr || r == at) [[unlikely]]
       return hand_copy(*next, *out);
