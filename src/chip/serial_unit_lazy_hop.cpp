@@ -27,13 +27,13 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
   const LineBurst* b = &burst;
   for (;;) {
     LineListener* next = nullptr;
+    SerialReceiver* r = nullptr;  // next->receiver()
     const LineBurst* out = nullptr;
-    if (!at->try_lazy_hop(*b, next, out)) {
+    if (!at->try_lazy_hop(*b, next, r, out)) {
       at->absorb_lazy();
       return at->announce(*b);
     }
     ++chain_depth;
-    SerialReceiver* const r = next->receiver();
     if (r == nullptr || r == at) [[unlikely]]
       return hand_copy(*next, *out);
     b = out;  // the node's lazy burst, read by the next one before anything changes it
@@ -98,7 +98,7 @@ inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
 }
 
 inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next,
-                                         const LineBurst*& out) {
+                                         SerialReceiver*& receiver, const LineBurst*& out) {
   // Lazy hops on, running (a unit in reset has no bit period), the repeater on and at this
   // chip's rate.
   if (b.bit_period != hop_period_ || chain_depth >= kMaxChain) return false;
@@ -143,15 +143,17 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   kept.reports_over = kept.ends + hop_lag_;  // report_lag(b.bit_period)
   // Set by the listener; set here too, so the entry is whole even if a listener throws.
   kept.reaching.start = leaves;
-  TxdOutputs& txd = unit_.outputs();
-  // Through a local: the slow path's call takes its address, which kept the loop's `next`
-  // on the stack.
+  TxdOutputs& txd = txd_;
+  // Through locals: the slow path's call takes their addresses, which kept the loop's
+  // `next` on the stack.
   LineListener* to = nullptr;
-  if (!txd.follower_takes_into(leaves, kept.reaching, to)) {
+  SerialReceiver* r = nullptr;
+  if (!txd.follower_takes_into(leaves, kept.reaching, to, r)) {
     lazy_.pop_back();
     return false;
   }
   next = to;
+  receiver = r;
   if (!after_lazy) txd.set_follower_delay(kept.reaching.start - leaves);  // as line_burst()
   out = &kept.reaching;
   ++lazy_hops_taken_;

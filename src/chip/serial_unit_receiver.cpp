@@ -31,6 +31,7 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
     : LineListener(this),
       unit_(unit),
       scheduler_(unit.chip().scheduler()),
+      txd_(unit.outputs()),
       mclk_(unit.chip().mclk()),
       recactn_(unit.chip(), Pin::RECACTN, *this) {
   start_report_event_ = scheduler_.own(

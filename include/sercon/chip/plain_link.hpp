@@ -48,6 +48,14 @@ class PlainLink {
     next = output_;
     return true;
   }
+  // pass_at() naming the output's receiver too (LineListener::receiver(), kept here: a chain
+  // of lazy hops goes on there, a load less after the link).
+  bool pass_at(sim::Time leaves, PassedBursts& sender, LineListener*& next, sim::Time& arrives,
+               SerialReceiver*& receiver) {
+    if (!pass_at(leaves, sender, next, arrives)) return false;
+    receiver = output_receiver_;
+    return true;
+  }
 
   sim::Time delay() const { return delay_; }
   LineListener* output() const { return output_; }
@@ -55,6 +63,7 @@ class PlainLink {
   // has somewhere to pass them).
   void set(LineListener* output, bool plain) {
     output_ = output;
+    output_receiver_ = output != nullptr ? output->receiver() : nullptr;
     plain_ = plain && output != nullptr;
   }
   // Who holds the bursts passed and not yet booked (null: none), taken back; the owner asks
@@ -73,6 +82,7 @@ class PlainLink {
   const sim::Scheduler& scheduler_;
   sim::Time delay_;
   LineListener* output_ = nullptr;
+  SerialReceiver* output_receiver_ = nullptr;  // output_->receiver()
   bool plain_ = false;
   PassedBursts* passed_from_ = nullptr;
   sim::Time last_passed_ = 0;  // the last burst passed: its start at the far end

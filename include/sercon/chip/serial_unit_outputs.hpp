@@ -85,6 +85,15 @@ class TxdOutputs final : public PassedBursts {
     if (lone_link_ != nullptr) return lone_link_->pass_at(leaves, *this, next, into.start);
     return follower_takes_copy(leaves, into, next);
   }
+  // The same naming `next`'s receiver (LineListener::receiver()): a lazy hop's.
+  bool follower_takes_into(sim::Time leaves, LineBurst& into, LineListener*& next,
+                           SerialReceiver*& receiver) {
+    if (lone_link_ != nullptr)
+      return lone_link_->pass_at(leaves, *this, next, into.start, receiver);
+    if (!follower_takes_copy(leaves, into, next)) return false;
+    receiver = next->receiver();
+    return true;
+  }
   // TxD's own conditions for passing a burst leaving at `leaves` to the lone follower.
   inline bool would_pass(sim::Time leaves) const;  // serial_unit_pass_through.hpp
   void set_follower_delay(sim::Time delay) { follower_delay_ = delay; }

@@ -230,7 +230,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   Entry& append(RxdSegment&& segment);
   // true: taken lazily; the caller delivers `out` to `next` (LineListener::pass_through).
   // Inline in line_burst(), as drop_lazy_over() in it: a call less per hop of a lazy chain.
-  inline bool try_lazy_hop(const LineBurst& burst, LineListener*& next, const LineBurst*& out);
+  // `receiver`: next->receiver().
+  inline bool try_lazy_hop(const LineBurst& burst, LineListener*& next, SerialReceiver*& receiver,
+                           const LineBurst*& out);
   [[gnu::cold, gnu::noinline]] static void hand_copy(LineListener& next, const LineBurst& out);
   // std::invalid_argument for a burst without bits or a bit period.
   void check(const LineBurst& burst) {
@@ -381,7 +383,10 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
 
   SerialUnit& unit_;
   sim::Scheduler& scheduler_;  // the chip's, kept here: a hop asks for the time, one pointer less
-  const MclkGrid& mclk_;       // the chip's, fixed for its life: the report times count in it
+  // The unit's TxD (made before the receiver, fixed for its life), kept here: from a node to
+  // the next in a chain of lazy hops go as few loads one after the other as can be.
+  TxdOutputs& txd_;
+  const MclkGrid& mclk_;  // the chip's, fixed for its life: the report times count in it
   // A report handler as it is called: a plain function and its context (a std::function
   // given is called through one of these, kept in start_function_ / telegram_function_).
   template <typename... Args>
