@@ -148,7 +148,9 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   // `next` on the stack.
   LineListener* to = nullptr;
   SerialReceiver* r = nullptr;
-  if (!txd.follower_takes_into(leaves, kept.reaching, to, r)) {
+  PlainLink* const link = hop_link_;  // TxD's lone link, its object not loaded (usual)
+  if (link != nullptr ? !link->pass_at(leaves, txd, to, kept.reaching.start, r)
+                      : !txd.follower_takes_into(leaves, kept.reaching, to, r)) {
     lazy_.pop_back();
     return false;
   }

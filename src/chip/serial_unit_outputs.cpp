@@ -85,17 +85,16 @@ void TxdOutputs::tell_left_dark(LineListener* left) {
 
 void TxdOutputs::find_lone_follower() {
   lone_follower_ = nullptr;
-  lone_link_ = nullptr;
   for (const Output& o : outputs_) {
     if (o.view.mode != Mode::Line || o.listener == nullptr) continue;
     if (lone_follower_ != nullptr) {  // two listeners follow the line
       lone_follower_ = nullptr;
-      lone_link_ = nullptr;
-      return;
+      break;
     }
     lone_follower_ = o.listener;
-    lone_link_ = o.listener->plain_link();
   }
+  lone_link_ = lone_follower_ != nullptr ? lone_follower_->plain_link() : nullptr;
+  if (link_mirror_ != nullptr) *link_mirror_ = lone_link_;
 }
 
 const RxdSegment& TxdOutputs::line_now() const {

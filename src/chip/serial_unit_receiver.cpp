@@ -34,6 +34,7 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
       txd_(unit.outputs()),
       mclk_(unit.chip().mclk()),
       recactn_(unit.chip(), Pin::RECACTN, *this) {
+  txd_.mirror_lone_link(&hop_link_);
   start_report_event_ = scheduler_.own(
       [](void* self) { static_cast<SerialReceiver*>(self)->fire_report<false>(); }, this);
   telegram_report_event_ = scheduler_.own(
@@ -47,6 +48,7 @@ SerialReceiver::SerialReceiver(SerialUnit& unit)
 }
 
 SerialReceiver::~SerialReceiver() {
+  txd_.mirror_lone_link(nullptr);
   scheduler_.disown(start_report_event_);
   scheduler_.disown(telegram_report_event_);
   scheduler_.cancel(monitor_event_);

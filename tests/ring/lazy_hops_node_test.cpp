@@ -387,6 +387,76 @@ TEST(LazyHops, AListenerThatChangesTheBurstItPassesIsRefused) {
   }
 }
 
+// A lazy hop asks TxD's lone follower through the plain link the receiver keeps a copy of
+// (TxdOutputs::mirror_lone_link): once TxD1's fibre is replaced by a listener that is not a
+// plain link, bursts coming after go to that listener, and back to a fibre when one is
+// connected again; the same with lazy hops off.
+// A listener that is not a plain link, passing everything on 1000 ps later, through
+// pass_through too.
+class DelayingLink final : public chip::LineListener {
+ public:
+  explicit DelayingLink(chip::LineListener& far) : far_(far) {}
+  void line_condition(Time at, LineCondition c, Time period) override {
+    far_.line_condition(at + 1000, c, period);
+  }
+  void line_burst(const LineBurst& burst) override { far_.line_burst(later(burst)); }
+  bool pass_through(const LineBurst& burst, chip::LineListener*& next, const LineBurst*& out,
+                    chip::PassedBursts&) override {
+    passed_ = later(burst);
+    next = &far_;
+    out = &passed_;
+    ++taken;
+    return true;
+  }
+  void book_passed(const LineBurst&) override {}
+  int taken = 0;
+
+ private:
+  static LineBurst later(const LineBurst& b) {
+    return LineBurst{b.start + 1000, b.bit_period, b.bits};
+  }
+  chip::LineListener& far_;
+  LineBurst passed_;
+};
+
+std::vector<std::string> follower_replaced(bool lazy) {
+  RepeatingChip node(lazy);
+  sim::Scheduler& s = node.s;
+  testing::Recorder out1(s), out2(s), out3(s);
+  Fibre f(s, 10.0), g(s, 10.0);
+  f.connect(out1);
+  g.connect(out3);
+  DelayingLink link(out2);
+  node.u.connect_txd(1, f.input());
+  node.idle_then_telegrams(3, 150, 100);
+  s.run_until(s.now() + 800 * kBit);  // after the three
+  const auto telegrams = [&](int n) {
+    Time at = s.now() + 100 * kBit;
+    for (int i = 0; i < n; ++i, at += 150 * kBit) {
+      s.run_until(at - 50 * kBit);  // each announced shortly before it comes
+      node.u.rxd().line_burst(LineBurst{at, kBit, testing::telegram_bits(0x07, {0x55, 0x55})});
+    }
+    s.run_until(at + 300 * kBit);
+  };
+  node.u.connect_txd(1, link);
+  telegrams(3);
+  node.u.connect_txd(1, g.input());
+  telegrams(3);
+  if (lazy) {
+    EXPECT_GT(link.taken, 0);
+    EXPECT_GT(node.u.lazy_hops_taken(), 6u);
+  }
+  std::vector<std::string> trace;
+  for (const auto& e : out1.events) trace.push_back("1 " + event_text(e));
+  for (const auto& e : out2.events) trace.push_back("2 " + event_text(e));
+  for (const auto& e : out3.events) trace.push_back("3 " + event_text(e));
+  return trace;
+}
+
+TEST(LazyHops, BurstsAfterTheFollowerIsReplacedGoToTheNewOne) {
+  expect_same(follower_replaced(true), follower_replaced(false));
+}
+
 // docs/serial-and-ring.md, "Absorbing": a plan of reports (here the telegram processor's
 // interest changed) that wants none of the waiting bursts' reports leaves them lazy; a read
 // of the line still absorbs them.

@@ -97,6 +97,12 @@ class TxdOutputs final : public PassedBursts {
   // TxD's own conditions for passing a burst leaving at `leaves` to the lone follower.
   inline bool would_pass(sim::Time leaves) const;  // serial_unit_pass_through.hpp
   void set_follower_delay(sim::Time delay) { follower_delay_ = delay; }
+  // `*to` is kept equal to the lone follower's plain link (null: none, or stop): the
+  // receiver's lazy hops read it there, without a load of this object.
+  void mirror_lone_link(PlainLink** to) {
+    link_mirror_ = to;
+    if (to != nullptr) *to = lone_link_;
+  }
   // How long after leaving a burst the lone follower took reaches the listener behind it.
   sim::Time follower_delay() const { return follower_delay_; }
   // A burst passed through before: into the line as line_burst() would, no listener told
@@ -203,6 +209,7 @@ class TxdOutputs final : public PassedBursts {
   std::array<Output, 6> outputs_{};
   LineListener* lone_follower_ = nullptr;  // the one listener following the line; none or two: null
   PlainLink* lone_link_ = nullptr;         // lone_follower_->plain_link()
+  PlainLink** link_mirror_ = nullptr;      // kept equal to lone_link_ (mirror_lone_link)
   // The last unbooked_ segments of line_ are bursts the lone follower took by pass_through
   // and has not booked; they reach it follower_delay_ after they leave.
   std::size_t unbooked_ = 0;

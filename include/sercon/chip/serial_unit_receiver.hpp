@@ -386,7 +386,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // The unit's TxD (made before the receiver, fixed for its life), kept here: from a node to
   // the next in a chain of lazy hops go as few loads one after the other as can be.
   TxdOutputs& txd_;
-  const MclkGrid& mclk_;  // the chip's, fixed for its life: the report times count in it
+  PlainLink* hop_link_ = nullptr;  // txd_'s lone plain link (null: none), kept equal by txd_
+  const MclkGrid& mclk_;           // the chip's, fixed for its life: the report times count in it
   // A report handler as it is called: a plain function and its context (a std::function
   // given is called through one of these, kept in start_function_ / telegram_function_).
   template <typename... Args>
