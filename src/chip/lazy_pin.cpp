@@ -5,9 +5,16 @@
 namespace sercon::chip {
 
 LazyPin::LazyPin(Chip& chip, Pin pin, const Source& source)
-    : chip_(chip), pin_(pin), signal_(chip.pin(pin)), source_(source) {
+    : chip_(chip),
+      pin_(pin),
+      signal_(chip.pin(pin)),
+      source_(source),
+      had_watcher_(signal_.watched()) {
   signal_.provide(&LazyPin::provide, this);
-  signal_.on_watch([this] { plan(true); });
+  signal_.on_watch([this] {
+    had_watcher_ = true;
+    plan(true);
+  });
 }
 
 LazyPin::~LazyPin() {

@@ -39,7 +39,9 @@ class LazyPin {
     if (!idle()) plan(false);
   }
   // Nobody watches the pin and no change is planned: replan() would do nothing.
-  bool idle() const { return event_ == sim::Scheduler::EventId{} && !signal_.watched(); }
+  // The signal is asked only once it has had a watcher: a lazy hop asks at every node, and
+  // the pin's signal is another object to load.
+  bool idle() const { return event_.generation == 0 && !(had_watcher_ && signal_.watched()); }
 
  private:
   static sim::Level provide(const void* self);
@@ -51,6 +53,7 @@ class LazyPin {
   sim::Signal& signal_;  // chip_.pin(pin_)
   const Source& source_;
   sim::Scheduler::EventId event_{};
+  bool had_watcher_;  // signal_.watch() has been called (only it makes signal_.watched() true)
 };
 
 }  // namespace sercon::chip
