@@ -168,7 +168,7 @@ class BasicTelegramList : public TelegramListTypes {
     cancel_window_judge();
   }
   void cancel_window_judge() {
-    if (window_judge_ != sim::Scheduler::EventId{}) {
+    if (window_judge_.generation != 0) {  // EventId{}: none
       scheduler_.cancel(window_judge_);
       window_judge_ = {};
     }
