@@ -108,8 +108,8 @@ class TimeBase : public ChipUnit {
   }
 
   // Calls `callback` when the counter steps from `cycle_time` to cycle_time + 1 in the
-  // running cycle. Returns 0 (nothing scheduled) when that step is not ahead. Events are
-  // dropped by the next cycle start; listeners re-arm from on_cycle_start.
+  // running cycle. Returns CycleEvent{} (nothing scheduled) when that step is not ahead.
+  // Events are dropped by the next cycle start; listeners re-arm from on_cycle_start.
   CycleEvent at_cycle_time(std::int64_t cycle_time, std::function<void()> callback);
   // The same with `action(context)` (no std::function: for units that arm several
   // events per cycle). `context` must outlive the event.
@@ -157,38 +157,26 @@ class TimeBase : public ChipUnit {
   // context. False (and no event) when the step is not ahead.
   [[gnu::always_inline]] bool at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
                                             sim::Scheduler::Action action) {
-    const std::optional<sim::Time> step = step_ahead(cycle_time);
-    if (!step) return false;
-    scheduler_.arm_owned(owned.slot_, *step, action);
-    owned.cycle_time_ = cycle_time;
-    owned.when_ = *step;
-    owned.asked_ = ++asked_;
-    return true;
+    return owned_at_cycle_time(owned, cycle_time, [&](sim::Time when) {
+      scheduler_.arm_owned(owned.slot_, when, action);
+    });
   }
   // The same, deferred (Scheduler::defer_owned): for an event mostly dropped by the next
   // cycle start long before it is due (the slave's window close), which then never enters
   // the scheduler's queue.
   [[gnu::always_inline]] bool defer_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
                                                   sim::Scheduler::Action action) {
-    const std::optional<sim::Time> step = step_ahead(cycle_time);
-    if (!step) return false;
-    scheduler_.defer_owned(owned.slot_, *step, action);
-    owned.cycle_time_ = cycle_time;
-    owned.when_ = *step;
-    owned.asked_ = ++asked_;
-    return true;
+    return owned_at_cycle_time(owned, cycle_time, [&](sim::Time when) {
+      scheduler_.defer_owned(owned.slot_, when, action);
+    });
   }
   // The same, held (Scheduler::hold_owned): for an event whose action would change nothing
   // (INT_ENDMK raised while latched); the owner calls queue_held() when that may change.
   [[gnu::always_inline]] bool hold_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
                                                  sim::Scheduler::Action action) {
-    const std::optional<sim::Time> step = step_ahead(cycle_time);
-    if (!step) return false;
-    scheduler_.hold_owned(owned.slot_, *step, action);
-    owned.cycle_time_ = cycle_time;
-    owned.when_ = *step;
-    owned.asked_ = ++asked_;
-    return true;
+    return owned_at_cycle_time(owned, cycle_time, [&](sim::Time when) {
+      scheduler_.hold_owned(owned.slot_, when, action);
+    });
   }
   void queue_held(OwnedEvent& owned) { scheduler_.queue_held(owned.slot_); }
   void cancel(CycleEvent event) { scheduler_.cancel(event); }
@@ -226,7 +214,7 @@ class TimeBase : public ChipUnit {
 
  private:
   // A cycle-time event is a scheduler event: its id is the scheduler's EventId, never
-  // reused (a slot's generation changes), so a stale id never matches. `planned_` keeps
+  // reused (nor are generations), so a stale id never matches. `planned_` keeps
   // them in the order they were asked for, to drop, move or cancel them; entries of
   // events that ran or were cancelled are pruned from time to time.
   struct Planned {
@@ -235,6 +223,19 @@ class TimeBase : public ChipUnit {
     sim::Time when;  // kept up to date while pending
     std::uint64_t asked;
   };
+  // The owned forms' one body: `place(when)` puts the event in the scheduler (armed,
+  // deferred or held), then `owned` notes what was asked.
+  template <typename Place>
+  [[gnu::always_inline]] bool owned_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
+                                                  Place place) {
+    const std::optional<sim::Time> step = step_ahead(cycle_time);
+    if (!step) return false;
+    place(*step);
+    owned.cycle_time_ = cycle_time;
+    owned.when_ = *step;
+    owned.asked_ = ++asked_;
+    return true;
+  }
   // When the step out of `cycle_time` happens if it is ahead, else nullopt. A tick is ahead
   // when it comes after the last period change (earlier ones have passed) and its edge is
   // after now (after the last edge at or before now): one edge time, no tick count.
