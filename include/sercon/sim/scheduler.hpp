@@ -386,7 +386,7 @@ class Scheduler {
   Time now_ = 0;
   // Entries due at or before near_limit_ are in near_, the others in far_. Most events
   // are due soon and land at or near the back of the short near_ run; the few due much
-  // later (a cycle's window close) wait in far_ and do not make every placement move
+  // later (more than kHorizon ahead) wait in far_ and do not make every placement move
   // them. When near_ runs empty, the limit moves to kHorizon - 1 after the earliest far
   // entry and the entries up to it move over, sorted by time (a stable sort: same-time
   // entries in the order they were queued). Same-time entries are always in one of the
