@@ -315,31 +315,26 @@ void Scheduler::move_owned(OwnedSlot owned, Time when) {
 // scheduled before the move, are queued first. A deferred event moved is queued now.
 void Scheduler::requeue(std::uint32_t index, Time when) {
   Slot& slot = slots_[index];
-  // A held event moved: queued now (once passed, it has run: not pending).
-  if (held(slot)) {
+  if (held(slot)) {  // no queue entry to take out; once passed, it has run: not pending
     slot.next_free &= ~kHeld;
     if (passed(slot)) {
       ++slot.generation;
       throw std::logic_error("Scheduler::move_owned: owned slot " + std::to_string(index) +
                              " is not pending");
     }
-    if (!held_.empty()) queue_held_at(when);
-    queue_deferred_at(when);
-    slot.when = when;
-    insert(when, index, slot.generation);
-    return;
+  } else {
+    const auto deferred = std::find_if(
+        deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_), deferred_.end(),
+        [&](const Entry& e) { return e.slot == index && e.generation == slot.generation; });
+    if (deferred != deferred_.end()) {
+      deferred_.erase(deferred);
+    } else if (slot.when <= near_limit_) {
+      near_.remove(slot.when, index, slot.generation);
+    } else {
+      far_.remove(index, slot.generation);
+    }
   }
   if (!held_.empty()) queue_held_at(when);
-  const auto deferred = std::find_if(
-      deferred_.begin() + static_cast<std::ptrdiff_t>(deferred_head_), deferred_.end(),
-      [&](const Entry& e) { return e.slot == index && e.generation == slot.generation; });
-  if (deferred != deferred_.end()) {
-    deferred_.erase(deferred);
-  } else if (slot.when <= near_limit_) {
-    near_.remove(slot.when, index, slot.generation);
-  } else {
-    far_.remove(index, slot.generation);
-  }
   queue_deferred_at(when);
   slot.when = when;
   insert(when, index, slot.generation);
@@ -349,9 +344,7 @@ void Scheduler::requeue(std::uint32_t index, Time when) {
 void Scheduler::defer_owned_slowly(OwnedSlot owned, Time when, Action action) {
   if (when < now_ || owned_pending(owned)) refuse_arm("Scheduler::defer_owned", owned, when);
   Slot& slot = slots_[owned];
-  const Entry entry{when, owned, slot.generation = next_generation()};  // odd: live
-  slot.when = when;
-  slot.next_free &= ~kHeld;
+  const Entry entry{when, owned, take_order(slot, when)};
   owned_actions_[slot.next_free & kActionIndex] = action;
   if (!deferred_waiting() || when >= deferred_.back().when) {
     deferred_.push_back(entry);
@@ -387,8 +380,7 @@ bool Scheduler::queue_deferred(Time next, Time until) {
     queued = true;
   }
   deferred_head_ = i;
-  if (deferred_head_ >= kDeferredCompacted && deferred_head_ * 2 >= deferred_.size())
-    compact_deferred();
+  compact_deferred_if_due();
   set_stop();
   return queued;
 }

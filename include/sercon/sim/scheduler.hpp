@@ -67,11 +67,7 @@ class Scheduler {
   void arm_owned(OwnedSlot owned, Time when) {
     if (when < now_ || owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned", owned, when);
-    Slot& slot = slots_[owned];
-    const Generation generation = slot.generation = next_generation();  // odd: live
-    slot.when = when;
-    slot.next_free &= ~kHeld;
-    insert(when, owned, generation);
+    insert(when, owned, take_order(slots_[owned], when));
   }
   // arm_owned(owned, now()): the owned event runs right after the events already due now
   // (the one running, then those queued for now before it), as at(now(), ...) would. Inline
@@ -80,10 +76,7 @@ class Scheduler {
   void arm_owned_now(OwnedSlot owned) {
     if (owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned_now", owned, now_);
-    Slot& slot = slots_[owned];
-    const Generation generation = slot.generation = next_generation();  // odd: live
-    slot.when = now_;
-    slot.next_free &= ~kHeld;
+    const Generation generation = take_order(slots_[owned], now_);
     SortedRun& run = near_;
     if (run.head > 0 && now_ <= near_limit_ &&
         (run.head == run.tail || run.buffer[run.head].when > now_)) {
@@ -109,9 +102,7 @@ class Scheduler {
     if (when <= now_ || owned_pending(owned) || when < deferred_last_) [[unlikely]]
       return defer_owned_slowly(owned, when, action);
     Slot& slot = slots_[owned];
-    const Generation generation = slot.generation = next_generation();  // odd: live
-    slot.when = when;
-    slot.next_free &= ~kHeld;
+    const Generation generation = take_order(slot, when);
     owned_actions_[slot.next_free & kActionIndex] = action;
     deferred_.push_back(Entry{when, owned, generation});
     deferred_last_ = when;
@@ -123,8 +114,7 @@ class Scheduler {
       ++deferred_head_;
     }
     stop_ = std::min(until_, deferred_[deferred_head_].when - 1);
-    if (deferred_head_ >= kDeferredCompacted && deferred_head_ * 2 >= deferred_.size()) [[unlikely]]
-      compact_deferred();
+    compact_deferred_if_due();
   }
   // arm_owned(owned, when, action) for an event whose action would change nothing while a
   // condition of its owner holds (INT_TEND raised with its flag latched): it takes its
@@ -253,6 +243,13 @@ class Scheduler {
   bool queue_held_through(Time next);
   // The generation of an event scheduled now (odd; 64 bits: never used up).
   Generation next_generation() { return generation_ += 2; }
+  // An owned slot armed (queued, deferred or not) for `when`: its new generation, the order
+  // it takes now; no longer held.
+  Generation take_order(Slot& slot, Time when) {
+    slot.when = when;
+    slot.next_free &= ~kHeld;
+    return slot.generation = next_generation();  // odd: live
+  }
   // Whether the event of generation `a` was scheduled before that of `b`.
   static bool earlier(Generation a, Generation b) { return a < b; }
   [[noreturn]] void refuse_past(const char* what, Time when) const;
@@ -351,6 +348,10 @@ class Scheduler {
   // Drops the deferred_ entries before deferred_head_, once they are at least half of them
   // and some dozens: not at every call.
   static constexpr std::size_t kDeferredCompacted = 32;
+  void compact_deferred_if_due() {
+    if (deferred_head_ >= kDeferredCompacted && deferred_head_ * 2 >= deferred_.size()) [[unlikely]]
+      compact_deferred();
+  }
   void compact_deferred();
   void set_stop();
   void refill();
