@@ -590,6 +590,23 @@ TEST(Scheduler, ADeferredEventRunsWhereArmingItThenWouldHavePutIt) {
   EXPECT_EQ(order, "adbcedfghd");
 }
 
+// One of the recorded events moved to `when` (the owner's time), if there is one.
+void move_one_to(Scheduler& s, Draws& draws, const std::vector<Scheduler::EventId>& ids,
+                 Time when) {
+  if (ids.empty()) return;
+  static_cast<void>(s.move(ids[draws.below(static_cast<std::uint32_t>(ids.size()))], when));
+}
+
+// Runs on a little: one step now and then (when the next event is close), mostly run_until().
+void step_or_run(Scheduler& s, Draws& draws) {
+  if (draws.below(4) == 0) {
+    const std::optional<Time> next = s.next_time();
+    if (next && *next <= s.now() + 100) s.step();
+  } else {
+    s.run_until(s.now() + run_step(draws));
+  }
+}
+
 // defer_owned() against at(): the owned event deferred (from outside and from its own
 // action, with either action), cancelled and moved, among events near and far that are
 // often due at its very time: scheduled before and after it was deferred, some of them
@@ -625,19 +642,15 @@ Seen run_deferred_twin(std::uint32_t seed, bool owned) {
     }
     // Others due at the owner's time, queued now or moved there.
     if (what == 3 && owner_when >= s.now()) add(owner_when);
-    if (what == 4 && !ids.empty() && owner_when >= s.now()) {
-      static_cast<void>(
-          s.move(ids[draws.below(static_cast<std::uint32_t>(ids.size()))], owner_when));
-    }
-    if (draws.below(4) == 0) {
-      const std::optional<Time> next = s.next_time();
-      if (next && *next <= s.now() + 100) s.step();
-    } else {
-      s.run_until(s.now() + run_step(draws));
-    }
+    if (what == 4 && owner_when >= s.now()) move_one_to(s, draws, ids, owner_when);
+    step_or_run(s, draws);
   }
   s.run_until(s.now() + kMillisecond);
   return seen;
+}
+
+TEST(Scheduler, ADeferredOwnedEventRunsAsAtWouldThroughRandomSteps) {
+  expect_twins_agree(run_deferred_twin, 7907u);
 }
 
 // An event may run the scheduler itself (run_until inside run_until). The outer run still
@@ -662,10 +675,6 @@ TEST(Scheduler, ARunInsideAnEventLeavesTheOuterRunItsOwnEnd) {
   EXPECT_EQ(s.now(), 100);
   s.run_until(1000);
   EXPECT_EQ(order, "abcd");
-}
-
-TEST(Scheduler, ADeferredOwnedEventRunsAsAtWouldThroughRandomSteps) {
-  expect_twins_agree(run_deferred_twin, 7907u);
 }
 
 // hold_owned() against at(): an owner whose event sets a flag (INT_TEND) holds it while the
@@ -764,21 +773,13 @@ Seen run_held_twin(std::uint32_t seed, bool held_form) {
       owner.move(owner_when);
     }
     if (what == 3 && owner_when >= s.now()) add(owner_when);
-    if (what == 4 && !ids.empty() && owner_when >= s.now()) {
-      static_cast<void>(
-          s.move(ids[draws.below(static_cast<std::uint32_t>(ids.size()))], owner_when));
-    }
+    if (what == 4 && owner_when >= s.now()) move_one_to(s, draws, ids, owner_when);
     if (what == 5) {  // a clear from outside
       flag = false;
       owner.cleared();
     }
     seen.emplace_back(s.now(), owner.pending() ? -1 : -2);
-    if (draws.below(4) == 0) {
-      const std::optional<Time> next = s.next_time();
-      if (next && *next <= s.now() + 100) s.step();
-    } else {
-      s.run_until(s.now() + run_step(draws));
-    }
+    step_or_run(s, draws);
   }
   s.run_until(s.now() + kMillisecond);
   seen.emplace_back(s.now(), flag ? -3 : -4);
