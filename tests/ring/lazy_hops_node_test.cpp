@@ -339,17 +339,22 @@ TEST(LazyHops, AHandlerInstalledWhileATelegramPassesHearsTheSame) {
 // A node keeps its lazy burst's own bits and books them itself later, so a listener that
 // hands back other bits or another bit period is refused with a logic_error naming it,
 // rather than the node booking what the far end never got; one that keeps them is taken.
+//
+// A listener that is not a plain link: it passes everything on 1000 ps later, through
+// pass_through too. `change_period`: pass_through hands back twice the bit period (which a
+// node must refuse).
 class PassingLink final : public chip::LineListener {
  public:
-  PassingLink(chip::LineListener& far, bool change) : far_(far), change_(change) {}
+  explicit PassingLink(chip::LineListener& far, bool change_period = false)
+      : far_(far), change_period_(change_period) {}
   void line_condition(Time at, LineCondition c, Time period) override {
-    far_.line_condition(at, c, period);
+    far_.line_condition(at + 1000, c, period);
   }
-  void line_burst(const LineBurst& burst) override { far_.line_burst(burst); }
+  void line_burst(const LineBurst& burst) override { far_.line_burst(later(burst)); }
   bool pass_through(const LineBurst& burst, chip::LineListener*& next, const LineBurst*& out,
                     chip::PassedBursts&) override {
-    passed_ = LineBurst{burst.start + 1000, change_ ? 2 * burst.bit_period : burst.bit_period,
-                        burst.bits};
+    passed_ = later(burst);
+    if (change_period_) passed_.bit_period *= 2;
     next = &far_;
     out = &passed_;
     ++taken;
@@ -359,8 +364,11 @@ class PassingLink final : public chip::LineListener {
   int taken = 0;
 
  private:
+  static LineBurst later(const LineBurst& b) {
+    return LineBurst{b.start + 1000, b.bit_period, b.bits};
+  }
   chip::LineListener& far_;
-  bool change_;
+  bool change_period_;
   LineBurst passed_;
 };
 
@@ -391,34 +399,6 @@ TEST(LazyHops, AListenerThatChangesTheBurstItPassesIsRefused) {
 // (TxdOutputs::mirror_lone_link): once TxD1's fibre is replaced by a listener that is not a
 // plain link, bursts coming after go to that listener, and back to a fibre when one is
 // connected again; the same with lazy hops off.
-// A listener that is not a plain link, passing everything on 1000 ps later, through
-// pass_through too.
-class DelayingLink final : public chip::LineListener {
- public:
-  explicit DelayingLink(chip::LineListener& far) : far_(far) {}
-  void line_condition(Time at, LineCondition c, Time period) override {
-    far_.line_condition(at + 1000, c, period);
-  }
-  void line_burst(const LineBurst& burst) override { far_.line_burst(later(burst)); }
-  bool pass_through(const LineBurst& burst, chip::LineListener*& next, const LineBurst*& out,
-                    chip::PassedBursts&) override {
-    passed_ = later(burst);
-    next = &far_;
-    out = &passed_;
-    ++taken;
-    return true;
-  }
-  void book_passed(const LineBurst&) override {}
-  int taken = 0;
-
- private:
-  static LineBurst later(const LineBurst& b) {
-    return LineBurst{b.start + 1000, b.bit_period, b.bits};
-  }
-  chip::LineListener& far_;
-  LineBurst passed_;
-};
-
 std::vector<std::string> follower_replaced(bool lazy) {
   RepeatingChip node(lazy);
   sim::Scheduler& s = node.s;
@@ -426,7 +406,7 @@ std::vector<std::string> follower_replaced(bool lazy) {
   Fibre f(s, 10.0), g(s, 10.0);
   f.connect(out1);
   g.connect(out3);
-  DelayingLink link(out2);
+  PassingLink link(out2);
   node.u.connect_txd(1, f.input());
   node.idle_then_telegrams(3, 150, 100);
   s.run_until(s.now() + 800 * kBit);  // after the three
