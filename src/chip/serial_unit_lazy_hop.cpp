@@ -30,8 +30,16 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     SerialReceiver* r = nullptr;  // next->receiver()
     const LineBurst* out = nullptr;
     if (!at->try_lazy_hop(*b, next, r, out)) {
+      // Read here. When the repeater hands it on unbooked, the chain goes on in this loop
+      // too (a read hop's burst, kept in its forwarded queue), as a call deeper would have.
       at->absorb_lazy();
-      return at->announce(*b);
+      Handed handed;
+      if (!at->announce(*b, handed)) return;
+      if (handed.receiver == nullptr || handed.receiver == at) [[unlikely]]
+        return hand_copy(*handed.next, *handed.out);
+      b = handed.out;
+      at = handed.receiver;
+      continue;
     }
     ++chain_depth;
     if (r == nullptr || r == at) [[unlikely]]

@@ -141,7 +141,8 @@ void SerialReceiver::refuse_more(sim::Time now) const {
 // was one argument to an out-of-line announce(const LineBurst&) ran 20 % slower with 254
 // slaves (fewer instructions); time it at 254 slaves after any change here
 // (docs/performance.md, fourteenth and sixteenth sessions).
-void SerialReceiver::announce(sim::Time at, const LineBurst* burst, RxdSegment* segment) {
+bool SerialReceiver::announce(sim::Time at, const LineBurst* burst, RxdSegment* segment,
+                              Handed* handed) {
   const sim::Time now = scheduler_.now();
   if (at < now) refuse_past(at, now);
   // Mostly a change after everything announced before: nothing to drop or cut.
@@ -152,7 +153,7 @@ void SerialReceiver::announce(sim::Time at, const LineBurst* burst, RxdSegment* 
   if (timeline_.size() >= kMaxTimeline) refuse_more(now);
   Entry& e = burst != nullptr ? timeline_.emplace_back(*burst, next_serial_++)
                               : append(std::move(*segment));
-  if (!unit_.running()) return;
+  if (!unit_.running()) return false;
   take(e, true);
   if (changed) {
     plan_reports();
@@ -165,13 +166,21 @@ void SerialReceiver::announce(sim::Time at, const LineBurst* burst, RxdSegment* 
                      (e.decode != nullptr || good(e.segment));
   if (changed || !quiet || at == now) plan_monitor();
   recactn_.replan();
+  if (handed != nullptr) return pass_handing(e, *handed);
   pass_to_repeater(e);
+  return false;
 }
 
 inline void SerialReceiver::pass_to_repeater(const Entry& e) {
   if (chain_depth >= kMaxChain) return defer_forward(e);
   const sim::ScopedCount link(chain_depth);
   unit_.repeater().input(e.segment);
+}
+
+inline bool SerialReceiver::pass_handing(const Entry& e, Handed& handed) {
+  if (chain_depth >= kMaxChain) return defer_forward(e), false;
+  ++chain_depth;  // as pass_to_repeater()'s count, for the next receiver
+  return unit_.repeater().input_handing(e.segment, handed);
 }
 
 // Go on when the change reaches RxD: the chain starts again from the scheduler.

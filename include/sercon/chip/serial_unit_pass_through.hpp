@@ -27,6 +27,18 @@ inline void SerialRepeater::input(const RxdSegment& segment) {
   if (!repon_ || unit_.bit_period() == 0) return;
   const sim::Time at = forward_time(segment.since);
   if (segment.is_burst && forward_unbooked_ && forward_unbooked(segment, at)) return;
+  input_booked(segment, at);
+}
+
+inline bool SerialRepeater::input_handing(const RxdSegment& segment, Handed& handed) {
+  if (!repon_ || unit_.bit_period() == 0) return false;
+  const sim::Time at = forward_time(segment.since);
+  if (segment.is_burst && forward_unbooked_ && hand_unbooked(segment, at, handed)) return true;
+  input_booked(segment, at);
+  return false;
+}
+
+inline void SerialRepeater::input_booked(const RxdSegment& segment, sim::Time at) {
   absorb_forwarded();
   // The later word wins (line.hpp).
   drop_announced_from(background_, at);
@@ -91,6 +103,19 @@ inline void TxdOutputs::own_burst(const LineBurst& own, sim::Time end) {
 // A read hop's burst handed on unbooked when the repeater's and TxD's conditions allow
 // (would_pass) and the lone follower takes it.
 inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Time at) {
+  Handed handed;
+  if (!hand_unbooked(segment, at, handed)) return false;
+  // A copy for whatever may absorb (drop) the forwarded bursts before it has read them:
+  // this node (its TxD back to its own RxD), or a listener that is not a receiver.
+  if (handed.receiver == nullptr || handed.receiver == &unit_.receiver()) {
+    const LineBurst copy = *handed.out;
+    return handed.next->line_burst(copy), true;
+  }
+  handed.next->line_burst(*handed.out);
+  return true;
+}
+
+inline bool SerialRepeater::hand_unbooked(const RxdSegment& segment, sim::Time at, Handed& handed) {
   if (!would_pass(at)) return false;
   const sim::Time now = scheduler_.now();
   TxdOutputs& txd = unit_.outputs();
@@ -101,23 +126,14 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
   kept.reaching.bit_period = segment.period;
   kept.reaching.bits = segment.bits;
   kept.reaching.start = at;  // set by the listener; set here too, so the entry is whole
-  LineListener* next = nullptr;
-  if (!txd.follower_takes_into(at, kept.reaching, next)) {
+  if (!txd.follower_takes_into(at, kept.reaching, handed.next, handed.receiver)) {
     forwarded_.pop_back();
     return false;
   }
   const sim::Time delay = kept.reaching.start - at;
   txd.set_follower_delay(delay);
   while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.drop_front();
-  const LineBurst& out = kept.reaching;  // the last: not dropped
-  // A copy for whatever may absorb (drop) the forwarded bursts before it has read them:
-  // this node (its TxD back to its own RxD), or a listener that is not a receiver.
-  SerialReceiver* const r = next->receiver();
-  if (r == nullptr || r == &unit_.receiver()) {
-    const LineBurst copy = out;
-    return next->line_burst(copy), true;
-  }
-  next->line_burst(out);
+  handed.out = &kept.reaching;  // the last: not dropped
   return true;
 }
 

@@ -31,6 +31,7 @@
 #include "sercon/chip/mclk_divider.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_input.hpp"
+#include "sercon/chip/serial_unit_repeater.hpp"
 #include "sercon/sim/circular_queue.hpp"
 #include "sercon/sim/front_drop_vector.hpp"
 #include "sercon/sim/reciprocal.hpp"
@@ -219,11 +220,16 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     bool telegram = false;  // the detection; false: address in
   };
 
-  void announce(RxdSegment&& segment) { announce(segment.since, nullptr, &segment); }
-  // A burst read: its entry built in place.
-  void announce(const LineBurst& burst) { announce(burst.start, &burst, nullptr); }
-  // What changes at `at`: `burst`, else `segment` (moved into the timeline).
-  void announce(sim::Time at, const LineBurst* burst, RxdSegment* segment);
+  using Handed = SerialRepeater::Handed;
+  void announce(RxdSegment&& segment) { announce(segment.since, nullptr, &segment, nullptr); }
+  // A burst read (line_burst's loop): its entry built in place. True: the repeater handed
+  // it on unbooked, left in `handed` for the loop to deliver.
+  bool announce(const LineBurst& burst, Handed& handed) {
+    return announce(burst.start, &burst, nullptr, &handed);
+  }
+  // What changes at `at`: `burst`, else `segment` (moved into the timeline). With `handed`:
+  // what goes on unbooked is left there (true) instead of delivered.
+  bool announce(sim::Time at, const LineBurst* burst, RxdSegment* segment, Handed* handed);
   // Out of line, so announce() carries no message building.
   [[noreturn, gnu::cold, gnu::noinline]] static void refuse_past(sim::Time at, sim::Time now);
   [[noreturn, gnu::cold, gnu::noinline]] void refuse_more(sim::Time now) const;
@@ -288,6 +294,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // For the const readers of the timeline: the receiver itself is never const.
   void absorb_lazy_to_read() const { const_cast<SerialReceiver*>(this)->absorb_lazy(); }
   inline void pass_to_repeater(const Entry& e);
+  // pass_to_repeater() leaving a burst that goes on unbooked in `handed` (true); chain_depth
+  // stays counted up for it, and the caller's loop puts it back.
+  inline bool pass_handing(const Entry& e, Handed& handed);
   [[gnu::cold, gnu::noinline]] void defer_forward(const Entry& e);  // the chain too deep
   void forward_deferred(std::uint64_t serial);
   bool supersede(sim::Time at);  // true when something announced before was changed

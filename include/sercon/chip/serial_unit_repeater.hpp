@@ -28,6 +28,17 @@ class SerialRepeater {
   void release();
   // RxD announced `segment` (segment.since >= now).
   inline void input(const RxdSegment& segment);  // serial_unit_pass_through.hpp
+  // A burst handed on unbooked to TxD's lone follower, for the caller to deliver: `out` to
+  // `next` (whose receiver() is `receiver`).
+  struct Handed {
+    LineListener* next = nullptr;
+    SerialReceiver* receiver = nullptr;
+    const LineBurst* out = nullptr;
+  };
+  // input() of a burst the receiver's loop reads (SerialReceiver::line_burst): true when it
+  // goes on unbooked, left in `handed` (the chain goes on in that loop, not a call deeper);
+  // false when done here.
+  inline bool input_handing(const RxdSegment& segment, Handed& handed);
   // The transmitter announced an own telegram (burst.start >= now) ending at `end` (its
   // end(), worked out once by the sender); its bits are taken.
   [[gnu::always_inline]] inline void own(LineBurst&& telegram,
@@ -75,6 +86,11 @@ class SerialRepeater {
   // looks (absorb_forwarded), as a lazy hop's. False: it takes the full path.
   // Always inline: GCC makes it a call (the chain it starts comes back into input()).
   [[gnu::always_inline]] inline bool forward_unbooked(const RxdSegment& segment, sim::Time at);
+  // forward_unbooked() but for the delivery, left to the caller in `handed`.
+  [[gnu::always_inline]] inline bool hand_unbooked(const RxdSegment& segment, sim::Time at,
+                                                   Handed& handed);
+  // input() past its unbooked case: the full path (the segment leaving at `at`).
+  inline void input_booked(const RxdSegment& segment, sim::Time at);
   // `next`: when what is booked after them leaves (kNoneNext: not known).
   static constexpr sim::Time kNoneNext = INT64_MAX / 2;
   void absorb_forwarded(sim::Time next = kNoneNext) {
