@@ -32,9 +32,11 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
     if (!at->try_lazy_hop(*b, next, r, out)) {
       // Read here. When the repeater hands it on unbooked, the chain goes on in this loop
       // too (a read hop's burst, kept in its forwarded queue), as a call deeper would have.
+      const HopTry read = at->read_try_;
+      at->read_try_ = HopTry::Full;
       at->absorb_lazy();
       Handed handed;
-      if (!at->announce(*b, handed)) return;
+      if (!(read == HopTry::Full ? at->announce(*b, handed) : at->read(*b, read, handed))) return;
       if (handed.receiver == nullptr || handed.receiver == at) [[unlikely]]
         return hand_copy(*handed.next, *handed.out);
       b = handed.out;
@@ -90,15 +92,21 @@ void SerialReceiver::refresh_hop_period() {
 // What consider() would plan for the burst's frames in the telegram processor's present
 // state. With one handler only, consider() also marks the other kind of report done for
 // good, which a later handler would see: that is left to the full path. Inline: asked at
-// every hop.
-inline bool SerialReceiver::wants_a_report(const LineBurst& b) const {
+// every hop. kNote: a burst of one frame wanted is noted in read_try_ for read().
+template <bool kNote>
+inline bool SerialReceiver::wants_a_report(const LineBurst& b) {
   if (hop_check_ != HopCheck::Frames) return hop_check_ == HopCheck::Always;
   const BurstDecode& decode = decode_burst(b.bits);
   if (!addressed_wanted_ && !decode.to_255) return false;  // may_want() no frame
   for (const wire::DecodedFrame& f : decode.frames) {
     if (!may_want(f)) continue;
     const sim::Time start = b.start + static_cast<sim::Time>(f.start_bit) * b.bit_period;
-    if (wants_start(start, f.address) || wants_telegram(start, f)) {
+    if (wants_start(start, f.address)) {
+      if (kNote && decode.frames.size() == 1) read_try_ = HopTry::ReadStart;
+      return true;
+    }
+    if (wants_telegram(start, f)) {
+      if (kNote && decode.frames.size() == 1) read_try_ = HopTry::ReadTelegram;
       return true;
     }
   }
@@ -113,8 +121,8 @@ inline bool SerialReceiver::try_lazy_hop(const LineBurst& b, LineListener*& next
   const sim::Time now = scheduler_.now();
   if (b.start <= now) return false;
   // Asked first of the dearer checks: it is the one that fails at a node that reads the
-  // burst (the checks have no effects, so their order is free).
-  if (wants_a_report(b) || !recactn_.idle()) return false;
+  // burst (the checks have no effects but the note for read(), so their order is free).
+  if (wants_a_report<true>(b) || !recactn_.idle()) return false;
   // After everything announced before (nothing superseded or cut) and between good signals
   // (the line monitor hears nothing): announce() would only keep it.
   const auto due = static_cast<std::uint64_t>(b.start + hop_due_);
@@ -201,14 +209,14 @@ void SerialReceiver::absorb_waiting() {
 // plan, as here), so they can stay lazy: a node that fires a report per telegram it reads
 // need not book each telegram it passes on. With one handler only, the full path marks
 // the other kind done for good: that is left to it.
-bool SerialReceiver::lazy_report_due(sim::Time now) const {
+bool SerialReceiver::lazy_report_due(sim::Time now) {
   if (hop_check_ != HopCheck::Frames) return true;
   for (std::size_t i = 0; i < lazy_.size(); ++i) {
     const LazyBurst& lazy = lazy_[i];
     const LineBurst& b = lazy.reaching;
     if (lazy.reports_over < now) continue;  // its reports are past
     // Asked as at the hop, of the burst as it reached RxD.
-    if (wants_a_report(LineBurst{lazy.arrived, b.bit_period, b.bits})) return true;
+    if (wants_a_report<false>(LineBurst{lazy.arrived, b.bit_period, b.bits})) return true;
   }
   return false;
 }

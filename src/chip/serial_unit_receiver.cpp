@@ -177,6 +177,31 @@ inline void SerialReceiver::pass_to_repeater(const Entry& e) {
   unit_.repeater().input(e.segment);
 }
 
+// What announce(burst, handed) does with such a burst, without asking again what the hop
+// try has found: it is after now (no past to refuse, the monitor not due now), the unit
+// runs at its rate (taken), its one frame decoded, the processor's answers known.
+bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
+  const sim::Time at = b.start;
+  const Entry& last = timeline_.back();
+  const bool changed =
+      (last.segment.since >= at || (last.segment.is_burst && at < last.cut)) && supersede(at);
+  prune();
+  if (timeline_.size() >= kMaxTimeline) refuse_more(scheduler_.now());
+  Entry& e = timeline_.emplace_back(b, next_serial_++);
+  take_one(e, decode_burst(b.bits));
+  if (changed) {
+    plan_reports();
+  } else if (report_armed_) {
+    consider_more(e);
+  } else {
+    consider_one(e, wanted);
+  }
+  // A burst taken: the monitor hears nothing after a good signal.
+  if (changed || !holds_more_than(1) || !good((timeline_.end() - 2)->segment)) plan_monitor();
+  recactn_.replan();
+  return pass_handing(e, handed);
+}
+
 inline bool SerialReceiver::pass_handing(const Entry& e, Handed& handed) {
   if (chain_depth >= kMaxChain) return defer_forward(e), false;
   ++chain_depth;  // as pass_to_repeater()'s count, for the next receiver
@@ -424,7 +449,7 @@ void SerialReceiver::plan_by_walk(sim::Time now) {
 inline void SerialReceiver::consider(Entry& e) {
   if (!e.decode || !(on_start_ || on_telegram_)) return;
   if (!report_armed_ && e.frames.size() == 1 && on_start_ && on_telegram_) {
-    return consider_one(e);  // the usual read: one frame, nothing planned
+    return consider_one(e, HopTry::Full);  // the usual read: one frame, nothing planned
   }
   consider_more(e);
 }
@@ -445,15 +470,17 @@ void SerialReceiver::consider_more(Entry& e) {
 // is past; the start report is taken when wanted and the address is whole, else the
 // detection when wanted. Always inline in announce(): as a call of its own (GCC kept it
 // out of line) its entry and exit cost about 18 instructions a read.
-[[gnu::always_inline]] inline void SerialReceiver::consider_one(Entry& e) {
+[[gnu::always_inline]] inline void SerialReceiver::consider_one(Entry& e, HopTry known) {
   FrameState& st = e.frames[0];
   const wire::DecodedFrame& f = e.decode->frames[0];
-  if (wants_start(st.start, f.address)) {
-    reports_of(e, 0);
-    if (st.start_report != kNever) return arm(Report{st.start_report, e.serial, 0, false});
-    st.start_done = true;  // no whole address: never comes
+  if (known != HopTry::ReadTelegram) {
+    if (known == HopTry::ReadStart || wants_start(st.start, f.address)) {
+      reports_of(e, 0);
+      if (st.start_report != kNever) return arm(Report{st.start_report, e.serial, 0, false});
+      st.start_done = true;  // no whole address: never comes
+    }
+    if (!wants_telegram(st.start, f)) return;
   }
-  if (!wants_telegram(st.start, f)) return;
   // Mostly an MST: its start report (not wanted now) is worked out only if asked for later.
   if (!st.telegram_known) telegram_report_of(e, 0);
   arm(Report{st.telegram_report, e.serial, 0, true});

@@ -234,11 +234,20 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[noreturn, gnu::cold, gnu::noinline]] static void refuse_past(sim::Time at, sim::Time now);
   [[noreturn, gnu::cold, gnu::noinline]] void refuse_more(sim::Time now) const;
   Entry& append(RxdSegment&& segment);
+  // How a burst a hop try refused is read: by announce() (Full), or it has one frame whose
+  // start report (ReadStart) or else detection (ReadTelegram) the processor wants, read by
+  // read() with that known (the usual read at a slave).
+  enum class HopTry : std::uint8_t { Full, ReadStart, ReadTelegram };
   // true: taken lazily; the caller delivers `out` to `next` (LineListener::pass_through).
+  // false: read, as read_try_ says (the caller sets it back to Full).
   // Inline in line_burst(), as drop_lazy_over() in it: a call less per hop of a lazy chain.
   // `receiver`: next->receiver().
   inline bool try_lazy_hop(const LineBurst& burst, LineListener*& next, SerialReceiver*& receiver,
                            const LineBurst*& out);
+  // announce(burst, handed) of a burst the hop try found `wanted` (ReadStart, ReadTelegram):
+  // it comes after now at the unit's rate, with one frame, and the processor's answers for
+  // it are known (twin tests: lazy hops on and off, which reads by announce()).
+  bool read(const LineBurst& burst, HopTry wanted, Handed& handed);
   [[gnu::cold, gnu::noinline]] static void hand_copy(LineListener& next, const LineBurst& out);
   // std::invalid_argument for a burst without bits or a bit period.
   void check(const LineBurst& burst) {
@@ -246,7 +255,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
       bad_burst(burst);
   }
   [[noreturn, gnu::cold]] static void bad_burst(const LineBurst& burst);
-  bool wants_a_report(const LineBurst& burst) const;
+  template <bool kNote>
+  bool wants_a_report(const LineBurst& burst);
   // What wants_a_report() and lazy_report_due() must look at, from the handlers and the
   // interest (set rarely, asked at every hop): no report at all; every report (one handler
   // only, or no interest); the frames, each asked of the interest.
@@ -303,6 +313,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   void cut(Entry& entry, sim::Time at);
   // Decode if this chip receives it. `appended`: just appended, so not cut (cut is its end).
   void take(Entry& entry, bool appended = false);
+  // take() of a burst at the receiver's rate whose decode `d` has one frame: what work_out()
+  // makes of it.
+  inline void take_one(Entry& entry, const BurstDecode& d);
   void prune();
   inline bool done_with(Entry& e, sim::Time now) const;    // prune()'s test of the front entry
   inline bool frames_over(Entry& e, sim::Time now) const;  // done_with() but for the report
@@ -363,11 +376,13 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     return (last.telegram_known ? last.telegram_report : last.end + report_lag(e.segment.period)) <
            now;
   }
-  bool lazy_report_due(sim::Time now) const;  // lazy_ not empty: a plan must absorb it first
+  bool lazy_report_due(sim::Time now);  // lazy_ not empty: a plan must absorb it first
   // Only `e` is new and nothing else changed: is one of its reports earlier than the one
   // planned?
   inline void consider(Entry& e);
-  inline void consider_one(Entry& e);              // one frame, nothing planned, both handlers
+  // One frame, nothing planned, both handlers. `known`: the processor's answers, when the
+  // hop try has asked them (ReadStart, ReadTelegram); Full: asked here.
+  inline void consider_one(Entry& e, HopTry known);
   [[gnu::noinline]] void consider_more(Entry& e);  // the others
   inline void arm(const Report& r);
   // The earliest report of e's frames the processor wants, if before best.when, into best.
@@ -445,6 +460,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::Time hop_sclk_ = 1;
   sim::Reciprocal hop_by_sclk_{1};
   HopCheck hop_check_ = HopCheck::None;
+  HopTry read_try_ = HopTry::Full;  // noted by a hop try that ends in a read(); else Full
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)

@@ -65,17 +65,20 @@ inline void SerialReceiver::take(Entry& e, bool appended) {
       appended || s.burst_end() == e.cut
           ? decode_burst(s.bits)
           : decode_burst_prefix(s.bits, static_cast<std::size_t>((e.cut - s.since) / s.period));
+  if (d.frames.size() == 1) return take_one(e, d);  // the usual burst, one telegram
   e.decode = &d;
-  if (d.frames.size() == 1) {  // the usual burst, one telegram: what work_out() makes of it
-    const wire::DecodedFrame& f = d.frames[0];
-    e.frames.set_one(
-        FrameState{s.since + static_cast<sim::Time>(f.start_bit) * s.period,
-                   std::min(s.since + static_cast<sim::Time>(f.end_bit) * s.period, e.cut), 0, 0,
-                   false, false, false, false});
-    return;
-  }
   e.frames.reset(d.frames.size());
   work_out(e, 0);
+}
+
+inline void SerialReceiver::take_one(Entry& e, const BurstDecode& d) {
+  const RxdSegment& s = e.segment;
+  e.decode = &d;
+  const wire::DecodedFrame& f = d.frames[0];
+  e.frames.set_one(
+      FrameState{s.since + static_cast<sim::Time>(f.start_bit) * s.period,
+                 std::min(s.since + static_cast<sim::Time>(f.end_bit) * s.period, e.cut), 0, 0,
+                 false, false, false, false});
 }
 
 inline void SerialReceiver::work_out(Entry& e, std::size_t first) {
