@@ -179,7 +179,8 @@ inline void SerialReceiver::pass_to_repeater(const Entry& e) {
 
 // What announce(burst, handed) does with such a burst, without asking again what the hop
 // try has found: it is after now (no past to refuse, the monitor not due now), the unit
-// runs at its rate (taken), its one frame decoded, the processor's answers known.
+// runs at its rate (taken) with the repeater on, the chain is short enough, its one frame
+// decoded, the processor's answers known.
 bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
   const sim::Time at = b.start;
   const Entry& last = timeline_.back();
@@ -196,7 +197,21 @@ bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
   } else {
     consider_one(e, wanted);
   }
-  // A burst taken: the monitor hears nothing after a good signal.
+  // A burst taken: the monitor hears nothing after a good signal. Mostly nothing is to tell
+  // it, nor RECACTN (replan() would do nothing), so nothing outside the node has run since
+  // the hop try: the repeater is on at this rate, the chain short enough (pass_handing()
+  // need not ask), and the burst leaves when a hop's would.
+  if (changed || !holds_more_than(1) || !good((timeline_.end() - 2)->segment) || !recactn_.idle())
+      [[unlikely]]
+    return read_told(e, changed, handed);
+  ++chain_depth;
+  const auto due = static_cast<std::uint64_t>(at + hop_due_);
+  const sim::Time leaves = static_cast<sim::Time>(hop_by_sclk_.divide(due)) * hop_sclk_;
+  return unit_.repeater().hand_read(e.segment, leaves, handed);
+}
+
+// read()'s end when the monitor or RECACTN is to be told (they may call out of the node).
+bool SerialReceiver::read_told(const Entry& e, bool changed, Handed& handed) {
   if (changed || !holds_more_than(1) || !good((timeline_.end() - 2)->segment)) plan_monitor();
   recactn_.replan();
   return pass_handing(e, handed);

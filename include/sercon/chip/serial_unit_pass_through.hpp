@@ -38,6 +38,12 @@ inline bool SerialRepeater::input_handing(const RxdSegment& segment, Handed& han
   return false;
 }
 
+inline bool SerialRepeater::hand_read(const RxdSegment& segment, sim::Time at, Handed& handed) {
+  if (hand_unbooked(segment, at, handed)) return true;
+  input_booked(segment, at);
+  return false;
+}
+
 inline void SerialRepeater::input_booked(const RxdSegment& segment, sim::Time at) {
   absorb_forwarded();
   // The later word wins (line.hpp).
@@ -116,7 +122,7 @@ inline bool SerialRepeater::forward_unbooked(const RxdSegment& segment, sim::Tim
 }
 
 inline bool SerialRepeater::hand_unbooked(const RxdSegment& segment, sim::Time at, Handed& handed) {
-  if (!would_pass(at)) return false;
+  if (!would_pass_on(at)) return false;  // input() has asked for REPON and the rate
   const sim::Time now = scheduler_.now();
   TxdOutputs& txd = unit_.outputs();
   // Kept as it reaches TxD's listener, and handed on from here (built in its slot, every
@@ -320,7 +326,10 @@ inline bool TxdOutputs::would_pass(sim::Time leaves) const {
 }
 
 inline bool SerialRepeater::would_pass(sim::Time leaves) const {
-  if (!repon_ || unit_.bit_period() == 0) return false;
+  return repon_ && unit_.bit_period() != 0 && would_pass_on(leaves);
+}
+
+inline bool SerialRepeater::would_pass_on(sim::Time leaves) const {
   // What prune() would leave: no own telegram not yet over (they end in order), and the
   // background never pruned empty. Nothing is kept, so nothing needs pruning here.
   if (own_end_ > scheduler_.now()) return false;

@@ -248,6 +248,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // it comes after now at the unit's rate, with one frame, and the processor's answers for
   // it are known (twin tests: lazy hops on and off, which reads by announce()).
   bool read(const LineBurst& burst, HopTry wanted, Handed& handed);
+  [[gnu::cold, gnu::noinline]] bool read_told(const Entry& e, bool changed, Handed& handed);
   [[gnu::cold, gnu::noinline]] static void hand_copy(LineListener& next, const LineBurst& out);
   // std::invalid_argument for a burst without bits or a bit period.
   void check(const LineBurst& burst) {

@@ -39,6 +39,10 @@ class SerialRepeater {
   // goes on unbooked, left in `handed` (the chain goes on in that loop, not a call deeper);
   // false when done here.
   inline bool input_handing(const RxdSegment& segment, Handed& handed);
+  // input_handing() of a burst a lazy hop's checks have found the repeater would take as it
+  // is (SerialReceiver::read: REPON on at the unit's rate, forwarding unbooked), leaving at
+  // `at` (its forward_time()).
+  inline bool hand_read(const RxdSegment& segment, sim::Time at, Handed& handed);
   // The transmitter announced an own telegram (burst.start >= now) ending at `end` (its
   // end(), worked out once by the sender); its bits are taken.
   [[gnu::always_inline]] inline void own(LineBurst&& telegram,
@@ -53,6 +57,8 @@ class SerialRepeater {
   // it to that follower, and absorb() takes it into the repeater's line (and TxD's) later,
   // as input() would have, telling no one. Inline (serial_unit_pass_through.hpp).
   inline bool would_pass(sim::Time leaves) const;
+  // would_pass() for a caller that knows REPON on at a running rate.
+  inline bool would_pass_on(sim::Time leaves) const;
   // The burst as it leaves (its start `leaves`; no LineBurst built for it).
   inline void absorb(sim::Time leaves, sim::Time period, const SharedBits& bits);
   // absorb() of a burst that has reached TxD's listener by now, after everything here:
