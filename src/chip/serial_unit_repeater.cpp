@@ -73,7 +73,7 @@ void SerialRepeater::absorb_forwarded_now(sim::Time next) {
   while (forwarded_.size() > 1 && forwarded_[1].leaves + delay <= now) forwarded_.drop_front();
   // Mostly (an own telegram where no lazy burst waits, the first slave's) the last one has
   // reached TxD's listener: the line and TxD's are set to it alone (settle).
-  if (forwarded_.size() == 1 && settles(forwarded_.front().leaves)) {
+  if (forwarded_.size() == 1 && settles(forwarded_.front().leaves, scheduler_.now())) {
     Forwarded& f = forwarded_.front();
     return settle(f.leaves, f.reaching.bit_period, std::move(f.reaching.bits));  // drops forwarded_
   }

@@ -56,7 +56,7 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   LineBurst burst{begin_at, period, encode_seeded(level_, address, data)};
   free_at_ = begin_at + static_cast<sim::Time>(burst.bits->size()) * period;  // burst.end()
   sent_since_reset_ = true;
-  unit_.repeater().own(std::move(burst), free_at_);  // last use
+  unit_.repeater().own(std::move(burst), free_at_, now);  // last use
   idle_.replan();
   return free_at_;
 }

@@ -7,21 +7,10 @@
 namespace sercon::chip {
 namespace {
 
-// More than a ring has telegrams under way: 254 slaves let some 256 go together at the end
-// of a cycle, and each one not kept is freed and allocated again the next cycle.
-constexpr std::size_t kMaxPooled = 1024;
 // A buffer longer than this (not a telegram: a test's long stream) is not kept.
 constexpr std::size_t kMaxKeptBits = 64 * 1024;
 
 }  // namespace
-
-// Plain data, so that the hot paths find it without a thread-local initialisation check.
-struct SharedBits::Pool {
-  Node* free[kMaxPooled];  // [0, size): count 1, bits and decodes as last left
-  std::size_t size;
-  bool gone;          // set at thread exit: what is released after that is freed
-  bool cleanup_made;  // pool_cleanup_ made for this thread (arm_cleanup())
-};
 
 // Frees the pool's objects at thread exit. Made (and so registered) by the first object
 // the thread allocates or pools (arm_cleanup()): a thread may release objects
@@ -30,6 +19,7 @@ struct SharedBits::PoolCleanup {
   bool armed = false;
   ~PoolCleanup() {
     pool_.gone = true;
+    pool_.room = 0;
     for (std::size_t i = 0; i < pool_.size; ++i) delete pool_.free[i];
     pool_.size = 0;
   }
@@ -39,16 +29,12 @@ thread_local constinit SharedBits::Pool SharedBits::pool_{};
 
 thread_local SharedBits::PoolCleanup SharedBits::pool_cleanup_;
 
-SharedBits::Node* SharedBits::recycled_node() {
-  if (!kRecycleBits || pool_.gone || pool_.size == 0) return allocate();
-  return pool_.free[--pool_.size];
-}
-
 // Touching pool_cleanup_ makes it for this thread, and so registers its destructor: once,
 // out of line (its thread-local wrapper is a call).
 void SharedBits::arm_cleanup() {
   pool_cleanup_.armed = true;
   pool_.cleanup_made = true;
+  pool_.room = kRecycleBits ? kMaxPooled : 0;
 }
 
 SharedBits::Node* SharedBits::allocate() {
@@ -70,13 +56,15 @@ SharedBits::Node* SharedBits::fresh_node() {
 // Kept as it is: its next taker writes it over (rewrite_shared_bits) or clears it
 // (fresh_node), so a telegram's object is not cleared only to be filled again.
 void SharedBits::release(Node* n) noexcept {
-  if (kRecycleBits && !pool_.gone && pool_.size < kMaxPooled && n->bits.size() <= kMaxKeptBits)
-      [[likely]] {
+  if (pool_.size < pool_.room && n->bits.size() <= kMaxKeptBits) [[likely]] {
     n->count = 1;
-    if (!pool_.cleanup_made) [[unlikely]]
-      arm_cleanup();
     pool_.free[pool_.size++] = n;
     return;
+  }
+  // The pool not made yet on this thread (its first release): made, then asked again.
+  if (kRecycleBits && !pool_.gone && !pool_.cleanup_made) {
+    arm_cleanup();
+    return release(n);
   }
   destroy(n);
 }

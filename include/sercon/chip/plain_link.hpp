@@ -33,7 +33,7 @@ class PlainLink {
     passed_from_ = &sender;
     passed_.start = last_passed_ = burst.start + delay_;
     passed_.bit_period = burst.bit_period;
-    passed_.bits = burst.bits;
+    passed_.bits.assign_held(burst.bits);
     next = output_;
     out = &passed_;
     return true;

@@ -16,6 +16,25 @@
 
 namespace sercon::chip {
 
+// write_burst() of the bits a burst holds (never null): counted up without operator='s
+// tests (SharedBits::assign_held). At every burst a line books.
+inline void write_held_burst(RxdSegment& s, sim::Time since, sim::Time period,
+                             const SharedBits& bits) {
+  s.is_burst = true;
+  s.condition = LineCondition::Idle;
+  s.since = since;
+  s.period = period;
+  s.bits.assign_held(bits);
+}
+
+// append_burst() of a burst's bits (never null) that do not live in `line` (so the append
+// cannot move them): written into the new slot by write_held_burst().
+template <class Line>
+inline void append_held_burst(Line& line, sim::Time since, sim::Time period,
+                              const SharedBits& bits) {
+  write_held_burst(line.emplace_back(), since, period, bits);
+}
+
 inline sim::Time SerialRepeater::forward_time(sim::Time t) const {
   const sim::Time sclk = sclk_period_;
   const sim::Time due = t + SerialUnit::kRepeaterDelayBits * unit_.bit_period();
@@ -74,7 +93,7 @@ inline void TxdOutputs::line_burst(const LineBurst& burst) {
   } else if (unbooked_ > 0) {
     book_unbooked();  // booked before what it is told now
   }
-  append_burst(line_, burst, burst.start);
+  append_held_burst(line_, burst.start, burst.bit_period, burst.bits);
   if (passed) {
     ++unbooked_;  // first: what `next` is told may come back round to this line
     next->line_burst(*out);
@@ -130,7 +149,7 @@ inline bool SerialRepeater::hand_unbooked(const RxdSegment& segment, sim::Time a
   Forwarded& kept = forwarded_.reuse_back();
   kept.leaves = at;
   kept.reaching.bit_period = segment.period;
-  kept.reaching.bits = segment.bits;
+  kept.reaching.bits.assign_held(segment.bits);  // a burst: it has bits
   kept.reaching.start = at;  // set by the listener; set here too, so the entry is whole
   if (!txd.follower_takes_into(at, kept.reaching, handed.next, handed.receiver)) {
     forwarded_.pop_back();
@@ -144,12 +163,12 @@ inline bool SerialRepeater::hand_unbooked(const RxdSegment& segment, sim::Time a
 }
 
 // Inline: at every own telegram (SerialTransmitter::send), a call less.
-inline void SerialRepeater::own(LineBurst&& telegram, sim::Time end) {
+inline void SerialRepeater::own(LineBurst&& telegram, sim::Time end, sim::Time now) {
   // absorb_passed(), its usual case inline: the lazy burst settles, which leaves nothing
   // forwarded and nothing for prune() to drop (settle()).
-  if (!unit_.receiver().absorb_lazy_for_own()) {
+  if (!unit_.receiver().absorb_lazy_for_own(now)) {
     absorb_forwarded();
-    prune();  // first: the telegram itself is not over (it begins at or after now)
+    prune(now);  // first: the telegram itself is not over (it begins at or after now)
   }
   // TxD's line takes the last own telegram before its slot may be reused below (mostly the
   // settle has dropped it: over).
@@ -205,7 +224,7 @@ inline void SerialRepeater::absorb(sim::Time leaves, sim::Time period, const Sha
 inline void SerialRepeater::book(sim::Time leaves, sim::Time period, const SharedBits& bits) {
   if (!background_.empty()) expect_absorbed_in_order("repeater", background_.back().since, leaves);
   prune();
-  append_burst(background_, leaves, period, bits);
+  append_held_burst(background_, leaves, period, bits);
   unit_.outputs().absorb(leaves, period, bits);
 }
 
@@ -213,30 +232,29 @@ inline void TxdOutputs::absorb(sim::Time start, sim::Time period, const SharedBi
   book_own();
   expect_absorbed_in_order("TxD", line_.back().since, start);
   prune();
-  append_burst(line_, start, period, bits);
+  append_held_burst(line_, start, period, bits);
   ++unbooked_;  // it took the burst by pass_through: booked when it asks (book_all)
 }
 
-// A line (repeater, TxD) set to the burst from `since` alone: what a prune would leave once
-// the burst, appended, is in force. The front slot is written over (no append).
-template <class Line, class Bits>
-inline void settle_burst(Line& line, sim::Time since, sim::Time period, Bits&& bits) {
-  while (line.size() > 1) pop_front_segment(line);
-  // The line is never empty (it holds what is in force).
-  write_burst(line.front(), since, period, std::forward<Bits>(bits));
+// The slot of a line (repeater, TxD) to be set to a settled burst alone: what a prune would
+// leave once the burst, appended, is in force. The front slot, written over (no append);
+// those after it go as drop_front() lets them (their bits until the slot is used again).
+template <class Line>
+inline RxdSegment& settled_slot(Line& line) {
+  while (line.size() > 1) line.drop_front();
+  return line.front();  // the line is never empty (it holds what is in force)
 }
 
 inline void TxdOutputs::settle(sim::Time start, sim::Time period, SharedBits&& bits) {
-  own_unbooked_ = nullptr;  // before the burst (last_since()): over, as settle_burst drops it
-  settle_burst(line_, start, period, std::move(bits));
+  own_unbooked_ = nullptr;  // before the burst (last_since()): over, as settled_slot() drops it
+  write_burst(settled_slot(line_), start, period, std::move(bits));
   unbooked_ = 1;  // it took the burst by pass_through; those before went unbooked (prune())
 }
 
-inline bool SerialRepeater::settles(sim::Time leaves) const {
+inline bool SerialRepeater::settles(sim::Time leaves, sim::Time now) const {
   // The burst has reached TxD's listener (so the forwarded bursts are over, absorb()), no
   // own telegram is left (prune()), and it comes after what the line and TxD's hold.
   const TxdOutputs& txd = unit_.outputs();
-  const sim::Time now = scheduler_.now();
   return leaves + txd.follower_delay() <= now && own_end_ <= now && !background_.empty() &&
          background_.back().since < leaves && txd.last_since() < leaves;
 }
@@ -245,7 +263,7 @@ inline bool SerialRepeater::settles(sim::Time leaves) const {
 inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, SharedBits&& bits) {
   forwarded_.drop_all();
   own_.drop_all();
-  settle_burst(background_, leaves, period, std::as_const(bits));
+  write_held_burst(settled_slot(background_), leaves, period, bits);
   unit_.outputs().settle(leaves, period, std::move(bits));
 }
 
@@ -278,7 +296,7 @@ inline void SerialReceiver::drop_lazy_over(sim::Time now) {
 inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
   while (holds_more_than(1)) timeline_.pop_back();
   Entry& e = timeline_.front();
-  write_burst(e.segment, lazy.arrived, lazy.reaching.bit_period, lazy.reaching.bits);
+  write_held_burst(e.segment, lazy.arrived, lazy.reaching.bit_period, lazy.reaching.bits);
   e.cut = lazy.ends;  // the segment's burst_end()
   e.serial = next_serial_++;
   if (over) {
@@ -299,7 +317,7 @@ inline bool SerialReceiver::settle_lazy(sim::Time now) {
   LazyBurst& lazy = lazy_.front();
   SerialRepeater& repeater = unit_.repeater();
   if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
-      repeater.settles(lazy.leaves) && all_done_with(now)) {
+      repeater.settles(lazy.leaves, now) && all_done_with(now)) {
     take_in_front(lazy, lazy.reports_over < now);
     // Its bits go to TxD's line: the slot is let go at once (drop_all).
     repeater.settle(lazy.leaves, lazy.reaching.bit_period, std::move(lazy.reaching.bits));
@@ -309,9 +327,9 @@ inline bool SerialReceiver::settle_lazy(sim::Time now) {
   return false;
 }
 
-inline bool SerialReceiver::absorb_lazy_for_own() {
+inline bool SerialReceiver::absorb_lazy_for_own(sim::Time now) {
   if (lazy_.empty()) return false;
-  if (settle_lazy(scheduler_.now())) return true;
+  if (settle_lazy(now)) return true;
   absorb_waiting();
   return false;
 }

@@ -80,7 +80,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::uint64_t lazy_hops_taken() const { return lazy_hops_taken_; }
   // absorb_lazy() for an own telegram (SerialRepeater::own), its usual case inline
   // (serial_unit_pass_through.hpp). True: the lazy burst settled (SerialRepeater::settle).
-  [[gnu::always_inline]] inline bool absorb_lazy_for_own();
+  [[gnu::always_inline]] inline bool absorb_lazy_for_own(sim::Time now);
   std::size_t lazy_bursts_waiting() const { return lazy_.size(); }  // not yet absorbed
 
   // What RxD carries now.

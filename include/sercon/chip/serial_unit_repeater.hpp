@@ -44,9 +44,10 @@ class SerialRepeater {
   // `at` (its forward_time()).
   inline bool hand_read(const RxdSegment& segment, sim::Time at, Handed& handed);
   // The transmitter announced an own telegram (burst.start >= now) ending at `end` (its
-  // end(), worked out once by the sender); its bits are taken.
-  [[gnu::always_inline]] inline void own(LineBurst&& telegram,
-                                         sim::Time end);  // serial_unit_pass_through.hpp
+  // end(), worked out once by the sender); its bits are taken. `now`: the scheduler's, as
+  // the sender has it.
+  [[gnu::always_inline]] inline void own(LineBurst&& telegram, sim::Time end,
+                                         sim::Time now);  // serial_unit_pass_through.hpp
   // REPON or the bit rate changed.
   void refresh();
 
@@ -64,7 +65,7 @@ class SerialRepeater {
   // absorb() of a burst that has reached TxD's listener by now, after everything here:
   // whether the line and TxD's would then hold just it once pruned (settles), and so
   // set them (settle). Inline (serial_unit_pass_through.hpp).
-  inline bool settles(sim::Time leaves) const;
+  inline bool settles(sim::Time leaves, sim::Time now) const;
   [[gnu::always_inline]] inline void settle(sim::Time leaves, sim::Time period, SharedBits&& bits);
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
@@ -105,8 +106,8 @@ class SerialRepeater {
   void absorb_forwarded_now(sim::Time next);
   // Into the line and TxD's, telling no one.
   inline void book(sim::Time leaves, sim::Time period, const SharedBits& bits);
-  void prune() {  // inline: at every burst
-    const sim::Time now = scheduler_.now();
+  void prune() { prune(scheduler_.now()); }  // inline: at every burst
+  void prune(sim::Time now) {
     // Own telegrams end in order: the last one over (the usual case) means all are.
     if (own_end_ <= now) {
       own_.drop_all();

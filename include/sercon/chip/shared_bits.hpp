@@ -110,14 +110,32 @@ class SharedBits {
     std::size_t count = 1;
     BurstDecodes decodes;
   };
-  struct Pool;
+  // More than a ring has telegrams under way: 254 slaves let some 256 go together at the
+  // end of a cycle, and each one not kept is freed and allocated again the next cycle.
+  static constexpr std::size_t kMaxPooled = 1024;
+  // Plain data, constant-initialised (constinit here too), so that the hot paths find it
+  // without a thread-local initialisation check.
+  struct Pool {
+    Node* free[kMaxPooled];  // [0, size): count 1, bits and decodes as last left
+    std::size_t size;
+    // How many may be kept: kMaxPooled once pool_cleanup_ is made for this thread (and 0
+    // without recycling, and again from thread exit on), so that release() asks one bound.
+    std::size_t room;
+    bool gone;          // set at thread exit: what is released after that is freed
+    bool cleanup_made;  // pool_cleanup_ made for this thread (arm_cleanup())
+  };
   struct PoolCleanup;
-  static thread_local Pool pool_;
+  static thread_local constinit Pool pool_;
   static thread_local PoolCleanup pool_cleanup_;
   explicit SharedBits(Node* node) : node_(node) {}
   static Node* fresh_node();  // counted from one, bits empty, no decodes (shared_bits.cpp)
-  // Counted from one, bits and decodes as the last holder left them (or empty).
-  static Node* recycled_node();
+  // Counted from one, bits and decodes as the last holder left them (or empty). Inline: at
+  // every telegram sent.
+  static Node* recycled_node() {
+    if (pool_.size != 0) [[likely]]
+      return pool_.free[--pool_.size];
+    return allocate();
+  }
   [[gnu::noinline, gnu::cold]] static void arm_cleanup();  // this thread's pool is freed at exit
   [[gnu::noinline]] static Node* allocate();               // a new object, on a pool's first use
   static void release(Node* node) noexcept;
