@@ -223,21 +223,13 @@ Scheduler::EventId Scheduler::at(Time when, Callback callback) {
 
 Scheduler::OwnedSlot Scheduler::own(Action action, void* context) {
   // A slot given back before may be taken: its generation only grows, so no stale EventId
-  // names it. So does an action index given back by disown().
+  // names it.
   const std::uint32_t index = free_slot_index();
   Slot& slot = slots_[index];
   free_head_ = slot.next_free;
-  std::uint32_t action_index = 0;
-  if (free_actions_.empty()) {
-    action_index = static_cast<std::uint32_t>(owned_actions_.size());
-    owned_actions_.push_back(action);
-  } else {
-    action_index = free_actions_.back();
-    free_actions_.pop_back();
-    owned_actions_[action_index] = action;
-  }
+  slot.action = action;
   slot.context = context;
-  slot.next_free = kOwned | action_index;
+  slot.next_free = kOwned;
   return index;
 }
 
@@ -245,7 +237,6 @@ void Scheduler::disown(OwnedSlot owned) {
   cancel_owned(owned);  // even: not pending
   Slot& slot = slots_[owned];
   if ((slot.next_free & kListed) != 0) std::erase(held_, owned);
-  free_actions_.push_back(slot.next_free & kActionIndex);
   slot.context = nullptr;
   ++slot.generation;  // odd, as a taken slot's: free_slot() makes it even again
   free_slot(owned);   // and links it (next_free no longer marks it owned)
@@ -345,7 +336,7 @@ void Scheduler::defer_owned_slowly(OwnedSlot owned, Time when, Action action) {
   if (when < now_ || owned_pending(owned)) refuse_arm("Scheduler::defer_owned", owned, when);
   Slot& slot = slots_[owned];
   const Entry entry{when, owned, take_order(slot, when)};
-  owned_actions_[slot.next_free & kActionIndex] = action;
+  slot.action = action;
   if (!deferred_waiting() || when >= deferred_.back().when) {
     deferred_.push_back(entry);
     deferred_last_ = std::max(deferred_last_, when);
@@ -421,14 +412,15 @@ inline void Scheduler::run(const Entry& entry) {
   const std::uint32_t index = entry.slot;
   Slot& slot = slots_[index];
   // Take the event out before running it: it may schedule others (slots_ may grow).
-  if (slot.action != nullptr) {
+  // Owned slots first: nearly every event of a ring is one.
+  if ((slot.next_free & kOwned) != 0) [[likely]] {
+    ++slot.generation;  // even: no longer pending (the action may arm it again)
+    slot.action(slot.context);
+  } else if (slot.action != nullptr) {
     const Action action = slot.action;
     void* const context = slot.context;
     free_slot(index);
     action(context);
-  } else if ((slot.next_free & kOwned) != 0) {
-    ++slot.generation;  // even: no longer pending (the action may arm it again)
-    owned_actions_[slot.next_free & kActionIndex](slot.context);
   } else {
     run_callback(index);
   }

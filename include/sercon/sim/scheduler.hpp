@@ -89,7 +89,7 @@ class Scheduler {
   // several things (a list walk's transmit or end marker). The slot keeps it for later arms.
   void arm_owned(OwnedSlot owned, Time when, Action action) {
     arm_owned(owned, when);  // first: refused, it leaves the slot's action as it was
-    owned_actions_[slots_[owned].next_free & kActionIndex] = action;
+    slots_[owned].action = action;
   }
   // arm_owned(owned, when, action) without a queue entry until the run comes to `when` (or
   // something is moved to `when`): the event then takes the place among the events due at
@@ -103,7 +103,7 @@ class Scheduler {
       return defer_owned_slowly(owned, when, action);
     Slot& slot = slots_[owned];
     const Generation generation = take_order(slot, when);
-    owned_actions_[slot.next_free & kActionIndex] = action;
+    slot.action = action;
     deferred_.push_back(Entry{when, owned, generation});
     deferred_last_ = when;
     // Mostly the first deferred event is this owner's last one, cancelled since (a slave's
@@ -132,7 +132,7 @@ class Scheduler {
     slot.generation = next_generation();  // odd: live
     slot.when = when;
     const std::uint32_t flags = slot.next_free;
-    owned_actions_[flags & kActionIndex] = action;
+    slot.action = action;
     if ((flags & kListed) == 0) [[unlikely]]  // the slot's first hold
       held_.push_back(owned);
     slot.next_free = flags | kHeld | kListed;
@@ -204,13 +204,14 @@ class Scheduler {
   // queues the deferred events due at its new time). A cancelled event's entry is dropped
   // when it comes to the front (its generation no longer matches).
   struct Slot {
-    Action action = nullptr;  // null: `callback` holds the event, or an owned slot's
+    // An owned slot's action, or an at() event's; null: `callback` holds the at() event.
+    Action action = nullptr;
     void* context = nullptr;
     Callback callback;
     Time when = 0;
     Generation generation = 2;  // even: free; never 0, which EventId{} would match
     // Free list link: index + 1, 0 ends the list. An owned slot (never on the list):
-    // kOwned | its action's index in owned_actions_.
+    // kOwned and its flags (kHeld, kListed).
     std::uint32_t next_free = 0;
   };
   static constexpr std::uint32_t kOwned = 0x8000'0000u;
@@ -218,7 +219,6 @@ class Scheduler {
   // generation is odd. kListed: the slot is in held_ (from its first hold on).
   static constexpr std::uint32_t kHeld = 0x4000'0000u;
   static constexpr std::uint32_t kListed = 0x2000'0000u;
-  static constexpr std::uint32_t kActionIndex = 0x1FFF'FFFFu;
   struct Entry {
     Time when;
     std::uint32_t slot;
@@ -411,10 +411,7 @@ class Scheduler {
   Time until_ = std::numeric_limits<Time>::max();          // run_until()'s, while it runs
   Time stop_ = std::numeric_limits<Time>::max();
   std::vector<Slot> slots_;
-  std::vector<Callback> callbacks_;          // of slots_ (same index); set only for at(Callback)
-  std::uint32_t free_head_ = 0;              // index + 1 of the first free slot, 0: none
-  std::vector<Action> owned_actions_;        // of the owned slots (Slot::next_free)
-  std::vector<std::uint32_t> free_actions_;  // owned_actions_ indices given back (disown)
+  std::uint32_t free_head_ = 0;  // index + 1 of the first free slot, 0: none
 };
 
 }  // namespace sercon::sim
