@@ -49,7 +49,7 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
               }),
       next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
       mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }),
-      mst_event_(scheduler_.own(&CycleControl::slave_mst_action, this)) {
+      mst_event_(scheduler_.own(&CycleControl::owned_mst_action, this)) {
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.react([this](sim::Level level) { on_cyc_clk(level); });
   time_base_.on_divider_change(
@@ -152,31 +152,43 @@ void CycleControl::cyc_clk_action(void* control) {
 }
 
 void CycleControl::slave_mst_action(void* control) {
-  static_cast<CycleControl*>(control)->slave_mst();
+  auto& self = *static_cast<CycleControl*>(control);
+  // A recognition runs at its load edge: the first (and last) edge at or after now.
+  self.slave_mst(self.time_base_.mclk().first_at_or_after(self.scheduler_.now()));
+}
+
+void CycleControl::owned_mst_action(void* control) {
+  auto& self = *static_cast<CycleControl*>(control);
+  self.slave_mst(self.mst_load_edge_);
 }
 
 void CycleControl::mst_detected(sim::Time when) {
-  const sim::Time load = time_base_.mclk().nth_edge_after(when, kMstSyncEdges);
-  if (load < scheduler_.now()) {
-    throw std::invalid_argument("CycleControl::mst_detected: an MST recognised at " +
-                                std::to_string(when) + " ps would load the counter at " +
-                                std::to_string(load) + " ps, before now (" +
-                                std::to_string(scheduler_.now()) + " ps)");
-  }
+  const MclkGrid::EdgeAt load = time_base_.mclk().nth_edge_at(when, kMstSyncEdges);
+  if (load.time < scheduler_.now()) refuse_past_load(when, load.time);
   if (!running_) return;
   // Mostly the MST is heard of at its load edge (TelegramProcessor::on_mst): now.
   if (!scheduler_.owned_pending(mst_event_)) {
-    if (load == scheduler_.now()) return scheduler_.arm_owned_now(mst_event_);
-    return scheduler_.arm_owned(mst_event_, load);
+    mst_load_edge_ = load.edge;
+    if (load.time == scheduler_.now()) return scheduler_.arm_owned_now(mst_event_);
+    return scheduler_.arm_owned(mst_event_, load.time);
   }
-  recognise_at(load, &CycleControl::slave_mst_action, false);
+  recognise_at(load.time, &CycleControl::slave_mst_action, false);
 }
 
-void CycleControl::slave_mst() {
+void CycleControl::refuse_past_load(sim::Time when, sim::Time load) const {
+  throw std::invalid_argument("CycleControl::mst_detected: an MST recognised at " +
+                              std::to_string(when) + " ps would load the counter at " +
+                              std::to_string(load) + " ps, before now (" +
+                              std::to_string(scheduler_.now()) + " ps)");
+}
+
+// At `load`, the MST's load edge: now is its time, so it is the last edge at or before now
+// (the counter's) and the first at or after (the cycle's start).
+void CycleControl::slave_mst(Edge load) {
   if (!running_ || mode_ != Mode::Slave) return;
-  window_.judge(false);
-  time_base_.start_cycle(CycleKind::Mst,
-                         [this](const CycleStart& start) { on_cycle_start(start); });
+  window_.judge_at(false, load);
+  time_base_.start_cycle_at(load, CycleKind::Mst,
+                            [this](const CycleStart& start) { on_cycle_start(start); });
   interrupts_.raise(Irq::Cycst);
 }
 

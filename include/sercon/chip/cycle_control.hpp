@@ -58,11 +58,14 @@ class CycleControl : public ChipUnit {
   // `action(this)` at `at` (function + context: no std::function per MST).
   void recognise_at(sim::Time at, sim::Scheduler::Action action, bool cyc_clk);
   static void cyc_clk_action(void* control);
-  static void slave_mst_action(void* control);
+  static void slave_mst_action(void* control);  // a recognition's (recognitions_)
+  static void owned_mst_action(void* control);  // mst_event_'s, at mst_load_edge_
+  [[noreturn, gnu::cold, gnu::noinline]] void refuse_past_load(sim::Time when,
+                                                               sim::Time load) const;
   void start_timer_now();
   void master_cycle_start();
   void cyc_clk_recognised();
-  void slave_mst();
+  void slave_mst(Edge load);
   void mst_due();
   bool master_cycle_starts_now() const;
   void send_mst();
@@ -99,6 +102,7 @@ class CycleControl : public ChipUnit {
   // A slave's MST in the synchroniser: one owned slot (an event a cycle, no EventId to keep);
   // an MST while it is pending takes recognitions_.
   sim::Scheduler::OwnedSlot mst_event_;
+  Edge mst_load_edge_ = 0;  // mst_event_'s time as an MCLK edge, while it is pending
   std::vector<std::function<void()>> send_mst_listeners_;
 };
 

@@ -56,13 +56,15 @@ class CycleWindow {
   // An MST (slave) or CYC_CLK (master) arrives now: raises the flags it earns. A close
   // due at this very instant is decided first, so the order of equal-time events does
   // not matter. Inline: a step of every slave's cycle start.
-  void judge(bool master) {
+  void judge(bool master) { judge_at(master, time_base_.mclk().last_at_or_before(now())); }
+  // judge() for `now_edge`, the last MCLK edge at or before now (a slave's MST load edge).
+  void judge_at(bool master, Edge now_edge) {
     // Mostly the close is still ahead: its time is looked at before the scheduler is asked.
-    if (close_event_.when() <= time_base_.scheduler().now() && close_event_.pending()) {
+    if (close_event_.when() <= now() && close_event_.pending()) {
       close_event_.cancel();
       close();
     }
-    const std::int64_t position = time_base_.count();
+    const std::int64_t position = time_base_.count_at(now_edge);
     switch (state_) {
       case State::Unsynced:
         return;
@@ -84,6 +86,7 @@ class CycleWindow {
   static constexpr std::uint8_t kJtscyc1 = 0x15;
   static constexpr std::uint8_t kJtscyc2 = 0x16;
 
+  sim::Time now() const { return time_base_.scheduler().now(); }
   static void closes(void* window);  // the close event (function + context)
   void close();
   void missed_judged(bool master, std::int64_t position);  // judge() after an empty window

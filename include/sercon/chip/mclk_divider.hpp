@@ -43,13 +43,21 @@ class MclkGrid {
   static constexpr Edge kFewEdges = 64;
   sim::Time nth_edge_after(sim::Time t, Edge n) const {
     // 0 < t <= exact_limit_: the edge is within exact_edges_, at edge * b.
-    if (static_cast<std::uint64_t>(t) - 1 < exact_limit_ && n >= 0 && n <= kFewEdges) {
-      // The first edge at or after t, ceil(t / b), as floor((t + b - 1) / b): no remainder
-      // to work out (t + b - 1 stays below 2^64: exact_limit_ is below 2^63).
-      const std::uint64_t first = by_den_.divide(static_cast<std::uint64_t>(t) + den_ - 1);
-      return static_cast<sim::Time>((first + static_cast<std::uint64_t>(n)) * den_);
-    }
+    if (exact_few(t, n)) return static_cast<sim::Time>(exact_nth_edge(t, n) * den_);
     return time_of(first_at_or_after(t) + n);
+  }
+  // The same edge's index and time (a slave's MST load edge: its cycle starts from it).
+  struct EdgeAt {
+    Edge edge;
+    sim::Time time;
+  };
+  EdgeAt nth_edge_at(sim::Time t, Edge n) const {
+    if (exact_few(t, n)) {
+      const std::uint64_t edge = exact_nth_edge(t, n);
+      return {static_cast<Edge>(edge), static_cast<sim::Time>(edge * den_)};
+    }
+    const Edge edge = first_at_or_after(t) + n;
+    return {edge, time_of(edge)};
   }
 
  private:
@@ -59,6 +67,15 @@ class MclkGrid {
   struct QuotRem {
     std::uint64_t quot, rem;
   };
+  // nth_edge_after's fast path: 0 < t <= exact_limit_, the edge within exact_edges_.
+  bool exact_few(sim::Time t, Edge n) const {
+    return static_cast<std::uint64_t>(t) - 1 < exact_limit_ && n >= 0 && n <= kFewEdges;
+  }
+  // The first edge at or after t, ceil(t / b), as floor((t + b - 1) / b): no remainder to
+  // work out (t + b - 1 stays below 2^64: exact_limit_ is below 2^63); then n more.
+  std::uint64_t exact_nth_edge(sim::Time t, Edge n) const {
+    return by_den_.divide(static_cast<std::uint64_t>(t) + den_ - 1) + static_cast<std::uint64_t>(n);
+  }
   QuotRem by_den(std::uint64_t u) const {
     const std::uint64_t q = by_den_.divide(u);
     return {q, u - q * den_};

@@ -68,9 +68,11 @@ class TimeBase : public ChipUnit {
 
   // The counter now, not wrapped (TCNT reads it modulo 2^16); 0 while held in reset.
   // Inline: a slave's window asks at every MST.
-  std::int64_t count() const {
+  std::int64_t count() const { return count_at(now_edge()); }
+  // count() for `now_edge`, the last MCLK edge at or before now (a caller that knows it).
+  std::int64_t count_at(Edge now_edge) const {
     if (!running_) return 0;
-    return base_ + ticks_.count_through(now_edge());
+    return base_ + ticks_.count_through(now_edge);
   }
   std::uint16_t tcnt() const { return static_cast<std::uint16_t>(count() & 0xFFFF); }
   // TSCYC0 in phases 0..2, TSCYC1 in phases 3..7. The phase is PHAS0 (the byte a master
@@ -88,9 +90,14 @@ class TimeBase : public ChipUnit {
   // Inline (with `first`): a slave's cycle start is one step with CycleControl's MST.
   template <class First>
   [[gnu::always_inline]] void start_cycle(CycleKind kind, First first) {
+    start_cycle_at(mclk_.first_at_or_after(scheduler_.now()), kind, first);
+  }
+  // start_cycle() for `start`, the first MCLK edge at or after now (a caller that knows it:
+  // a slave's MST runs at its load edge).
+  template <class First>
+  [[gnu::always_inline]] void start_cycle_at(Edge start, CycleKind kind, First first) {
     if (!running_) return;
     drop_future_events();
-    const Edge start = mclk_.first_at_or_after(scheduler_.now());
     ticks_ = DividerTicks::started_at(start, mclkst_.get(regs_), tick_period());
     base_ = regs_.field_value(kTcntstRegister);
     // The first tick is at least one edge after `start`, the first edge at or after now: the
