@@ -41,6 +41,7 @@ void Scheduler::SortedRun::make_room() {
     head = 0;
   } else {
     buffer.resize(std::max<std::size_t>(16, buffer.size() * 2));
+    capacity = buffer.size();
   }
 }
 
@@ -171,6 +172,7 @@ void Scheduler::sort_near(std::size_t sorted, std::size_t n) {
     }
     std::copy(first + run_end, first + n, merged);  // the runs still to merge
     near_.buffer.swap(scratch_);
+    near_.capacity = near_.buffer.size();
     first = near_.buffer.data();
     sorted = run_end;
   }
@@ -187,7 +189,10 @@ void Scheduler::refill() {
                     ? std::numeric_limits<Time>::max()
                     : earliest + (kHorizon - 1);
   near_.head = near_.tail = 0;
-  if (near_.buffer.size() < later.size()) near_.buffer.resize(later.size());
+  if (near_.buffer.size() < later.size()) {
+    near_.buffer.resize(later.size());
+    near_.capacity = later.size();
+  }
   // The live entries up to the limit to near_, the others stay, both in order; then near_
   // sorted by time, stably (mostly they come in order already).
   Entry* const first = near_.buffer.data();

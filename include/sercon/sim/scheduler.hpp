@@ -288,6 +288,8 @@ class Scheduler {
     std::vector<Entry> buffer;
     std::size_t head = 0;
     std::size_t tail = 0;
+    // buffer.size(), kept for the inline insert (a vector's size is a division by 24).
+    std::size_t capacity = 0;
 
     // insert() walks to an entry's place from the front when it goes at most this far in.
     static constexpr std::size_t kWalk = 8;
@@ -367,7 +369,7 @@ class Scheduler {
     SortedRun& run = near_;
     Entry* const data = run.buffer.data();
     if (run.tail == run.head || when >= data[run.tail - 1].when) {
-      if (run.tail < run.buffer.size()) {
+      if (run.tail < run.capacity) {
         data[run.tail++] = Entry{when, slot, generation};
         return;
       }

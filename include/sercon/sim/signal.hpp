@@ -69,7 +69,8 @@ class Signal {
     Steps(const Steps&) = delete;
     Steps& operator=(const Steps&) = delete;
     void done() {
-      if (outer_ && any_pending_) {
+      // any_pending_ first: mostly false, and the compiler keeps the order of the tests.
+      if (any_pending_ && outer_) {
         tell_pending();   // closes the batch
         telling_ = true;  // and the next step's opens
       }
