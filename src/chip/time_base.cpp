@@ -99,7 +99,7 @@ TimeBase::CycleEvent TimeBase::at_cycle_time(std::int64_t cycle_time,
   if (!step) return {};
   if (planned_.size() == planned_.capacity()) prune();
   const sim::Scheduler::EventId event = scheduler_.at(*step, std::move(callback));
-  planned_.push_back(Planned{event, cycle_time, *step, ++asked_});
+  planned_.push_back(Planned{event, cycle_time, *step});
   return event;
 }
 
@@ -132,11 +132,12 @@ void TimeBase::on_register_change(std::uint8_t address) {
   const Edge edge = mclk_.first_at_or_after(scheduler_.now());
   ticks_.change_period(edge, tick_period());
   free_.change_period(edge, tick_period());
-  // Moved in the order they were asked for, each after the events already due at its
-  // new time, so events that now share a time run in that order.
+  // Moved in the order they were asked for (the scheduler's order of their scheduling: each
+  // was scheduled when asked for, and a move keeps it), each after the events already due
+  // at its new time, so events that now share a time run in that order.
   const sim::Time changed_at = mclk_.time_of(edge);
   struct Moved {
-    std::uint64_t asked;
+    sim::Scheduler::Generation asked;
     sim::Scheduler::EventId event;  // 0: `owned` names an owned event
     const OwnedEvent* owned;
     std::int64_t cycle_time;
@@ -147,11 +148,12 @@ void TimeBase::on_register_change(std::uint8_t address) {
     // Ran or cancelled, or due at the tick before the change: stays.
     if (planned.when <= changed_at || !scheduler_.pending(planned.event)) continue;
     moved.push_back(
-        Moved{planned.asked, planned.event, nullptr, planned.cycle_time, &planned.when});
+        Moved{planned.event.generation, planned.event, nullptr, planned.cycle_time, &planned.when});
   }
   for (OwnedEvent* owned : owned_) {
     if (owned->when_ <= changed_at || !owned->pending()) continue;
-    moved.push_back(Moved{owned->asked_, {}, owned, owned->cycle_time_, &owned->when_});
+    moved.push_back(Moved{
+        scheduler_.owned_generation(owned->slot_), {}, owned, owned->cycle_time_, &owned->when_});
   }
   std::sort(moved.begin(), moved.end(),
             [](const Moved& a, const Moved& b) { return a.asked < b.asked; });

@@ -127,7 +127,7 @@ class TimeBase : public ChipUnit {
     if (!step) return {};
     if (planned_.size() == planned_.capacity()) prune();
     const sim::Scheduler::EventId event = scheduler_.at(*step, action, context);
-    planned_.push_back(Planned{event, cycle_time, *step, ++asked_});
+    planned_.push_back(Planned{event, cycle_time, *step});
     return event;
   }
   // A cycle-time event its owner keeps in place, for an owner with at most one pending at a
@@ -157,8 +157,7 @@ class TimeBase : public ChipUnit {
     sim::Scheduler& scheduler_;
     sim::Scheduler::OwnedSlot slot_;
     std::int64_t cycle_time_ = 0;
-    sim::Time when_ = 0;       // kept up to date while pending
-    std::uint64_t asked_ = 0;  // order among all cycle-time events asked for
+    sim::Time when_ = 0;  // kept up to date while pending
   };
   // at_cycle_time() into `owned` (whose earlier event has run or was cancelled), with its
   // context. False (and no event) when the step is not ahead.
@@ -228,7 +227,6 @@ class TimeBase : public ChipUnit {
     sim::Scheduler::EventId event;
     std::int64_t cycle_time;
     sim::Time when;  // kept up to date while pending
-    std::uint64_t asked;
   };
   // The owned forms' one body: `place(when)` puts the event in the scheduler (armed,
   // deferred or held), then `owned` notes what was asked.
@@ -240,7 +238,6 @@ class TimeBase : public ChipUnit {
     place(*step);
     owned.cycle_time_ = cycle_time;
     owned.when_ = *step;
-    owned.asked_ = ++asked_;
     return true;
   }
   // When the step out of `cycle_time` happens if it is ahead, else nullopt. A tick is ahead
@@ -303,7 +300,6 @@ class TimeBase : public ChipUnit {
   DividerTicks free_;         // the free-running divider
   std::vector<Planned> planned_;
   std::vector<OwnedEvent*> owned_;  // the registered OwnedEvents, alive
-  std::uint64_t asked_ = 0;         // cycle-time events asked for
   struct CycleStartListener {
     CycleListener listener;
     void* context;

@@ -150,6 +150,9 @@ class Scheduler {
   // Gives the slot back (cancelled if pending): the owner is done with it.
   void disown(OwnedSlot owned);
   bool owned_pending(OwnedSlot owned) const { return slots_[owned].generation % 2 == 1; }
+  // The pending owned event's generation: its place in the order of scheduling (a move
+  // keeps it).
+  Generation owned_generation(OwnedSlot owned) const { return slots_[owned].generation; }
   // Forgets the owned event if it is pending (its queue entry no longer matches).
   void cancel_owned(OwnedSlot owned) {
     if (owned_pending(owned)) ++slots_[owned].generation;
