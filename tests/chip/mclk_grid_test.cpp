@@ -219,7 +219,8 @@ TEST(MclkGrid, FastPathMatchesThe128BitFormula) {
 }
 
 // nth_edge_after's fast path (an exact grid, a time not too late, a few edges) gives what
-// the general formula gives: the n-th edge after the first at or after t.
+// the general formula gives: the n-th edge after the first at or after t; so does
+// nth_edge_at, with the edge's index.
 TEST(MclkGrid, NthEdgeAfterMatchesTheGeneralFormula) {
   const std::vector<std::int64_t> clocks{16'000'000, 32'000'000,   64'000'000, 33'000'000,
                                          1,          sim::kSecond, 244'140'625};
@@ -245,6 +246,9 @@ TEST(MclkGrid, NthEdgeAfterMatchesTheGeneralFormula) {
       for (const std::int64_t n : counts) {
         if (n > 0 && first > last - n) continue;  // the n-th edge does not fit 64 bits
         ASSERT_EQ(grid.nth_edge_after(t, n), grid.time_of(first + n)) << hz << " " << t << " " << n;
+        const MclkGrid::EdgeAt at = grid.nth_edge_at(t, n);
+        ASSERT_EQ(at.edge, first + n) << hz << " " << t << " " << n;
+        ASSERT_EQ(at.time, grid.time_of(first + n)) << hz << " " << t << " " << n;
       }
     }
   }
