@@ -119,7 +119,14 @@ void TelegramProcessor::on_telegram_start(sim::Time start, std::uint8_t address)
 }
 
 void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
-  ListItem item;
+  // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
+  // Frames do not overlap and a detection comes before the next frame's start report, so
+  // this is a guard, not a path the ring takes: its header is kept before the offer takes
+  // receiving_.item.
+  const bool lost = receiving();
+  const ListItem lost_item = receiving_.item;
+  // An accepted header goes straight into receiving_ (meaningful only while receiving()).
+  ListItem& item = receiving_.item;
   const TelegramList::Match match = list_.offer(start, address, item);
   if (match == TelegramList::Match::OtherAddress) {
     // Delta spec 2.9: the 410B forgets the request only when an MDT with another address
@@ -141,11 +148,12 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
     flmdtadr_.set(regs_, true);
   }
   try {
-    // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
-    // Frames do not overlap and a detection comes before the next frame's start report,
-    // so this is a guard, not a path the ring takes.
-    if (receiving()) receive_missed(receiving_.item);
-    receiving_ = Receiving{item, false, flag_set};
+    if (lost) [[unlikely]] {
+      stop_receiving();
+      receive_missed(lost_item);
+    }
+    receiving_.val_cleared = false;
+    receiving_.flag_set = flag_set;
     wants_.receiving = start;
     receiving_.val_cleared = receive_.begin(item);
   } catch (const ListFault& f) {
@@ -205,7 +213,7 @@ void TelegramProcessor::finish_receive(const ListItem& item, const wire::Decoded
   // The usual telegram inline: no outcome to look at (no error, no service work).
   if (receive_.finish_plain(item, frame)) {
     interrupts_.raise(Irq::Rend);
-    if (!scheduler_.pending(rscend_event_)) interrupts_.raise(Irq::Rscend);
+    if (!service_work_pending()) interrupts_.raise(Irq::Rscend);
     return;
   }
   ReceivePath::Outcome outcome;
@@ -224,7 +232,7 @@ void TelegramProcessor::finish_receive(const ListItem& item, const wire::Decoded
   // is done (at once when there is none, unless earlier work is still going on).
   if (outcome.service_work > 0) {
     after_service_work(outcome.service_work);
-  } else if (!scheduler_.pending(rscend_event_)) {
+  } else if (!service_work_pending()) {
     interrupts_.raise(Irq::Rscend);
   }
 }

@@ -162,6 +162,16 @@ class Chip {
     const std::uint16_t* words() const { return words_; }
     // The same for writing: a caller that writes words it has checked and marks them.
     std::uint16_t* words_to_write() const { return words_; }
+    // Word `word` read and written back as change(value read) at one instant: the marks and
+    // counts of read() and write() (the same word marked twice at one instant is marked once).
+    template <typename Change>
+    std::uint16_t update(std::uint16_t word, Change change) const {
+      const std::uint16_t value = words_[word];
+      words_[word] = change(value);
+      marks_.mark(word);
+      accesses_ += 2;
+      return value;
+    }
     // Word `word` read and written back as change(value read), and words first .. first +
     // count - 1 used (touch_run), at one instant: the marks and counts of the three.
     template <typename Change>

@@ -79,17 +79,23 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   [[gnu::flatten]] void on_cycle_start(const CycleStart& start);
   void on_send_mst();
   [[gnu::flatten]] void on_telegram_start(sim::Time start, std::uint8_t address);
-  [[gnu::always_inline]] inline void on_telegram(const ReceivedTelegram& telegram);
+  // Flattened: the walk on past a header held for an address-255 telegram (list_.taken)
+  // inlines into it, no call of its own.
+  [[gnu::flatten]] void on_telegram(const ReceivedTelegram& telegram);
   void on_mst(const wire::DecodedFrame& frame, sim::Time recognised);
-  // on_telegram(), offer() and finish_receive() are inline (defined in the .cpp, each called
-  // once there): a telegram's start and its detection are one call each from the serial
-  // unit (finish_receive() a call of its own cost about 14 a telegram).
+  // offer() and finish_receive() are inline (defined in the .cpp, each called once there): a
+  // telegram's start and its detection are one call each from the serial unit
+  // (finish_receive() a call of its own cost about 14 a telegram).
   inline void offer(sim::Time start, std::uint8_t address);
   void withdraw_mst();
   // `item`: the header receiving_ holds (stop_receiving() leaves it as it is).
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
                                                     const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
+  // INT_RSCEND waits for service-container work: mostly none was ever started (no id).
+  bool service_work_pending() const {
+    return rscend_event_ != sim::Scheduler::EventId{} && scheduler_.pending(rscend_event_);
+  }
   // Scheduler actions (function + context: no std::function per telegram).
   static void transmission_ended(void* processor);
   static void tend_cleared(void* processor);  // INT_TEND cleared: a held event is queued

@@ -48,10 +48,7 @@ class TelegramRam {
   template <class Change>
   std::uint16_t update(std::uint32_t word, Change change) {
     check(word);
-    const auto at = static_cast<std::uint16_t>(word);
-    const std::uint16_t value = port_.read(at);
-    port_.write(at, change(value));
-    return value;
+    return port_.update(static_cast<std::uint16_t>(word), change);
   }
   // Words first .. first + out.size() - 1, as one read() each: the words inside the RAM
   // are read (and marked for BUSYN), then a ListFault if the run reaches beyond it.
