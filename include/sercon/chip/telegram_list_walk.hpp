@@ -74,13 +74,13 @@ inline void BasicTelegramList<Client>::read_item(std::uint16_t address, ListItem
     if (item.kind == telegram::Kind::EndMarker) {
       item.length = 0;
       item.next = 0;
-      ram_.touch_run(address, telegram::kEndMarkerWords);
+      ram_.touch_checked_run(address, telegram::kEndMarkerWords);
       return;
     }
     if (item.kind != telegram::Kind::Invalid) {
       item.length = words[telegram::kLengthWord];
       item.next = telegram::pointer(words[telegram::kNextWord]);
-      ram_.touch_run(address, telegram::kTransmitHeaderWords);
+      ram_.touch_checked_run(address, telegram::kTransmitHeaderWords);
       return;
     }
   }

@@ -91,6 +91,8 @@ class TelegramRam {
     in_ram(first, count,
            [&](std::size_t n) { port_.touch_run(static_cast<std::uint16_t>(first), n); });
   }
+  // touch_run() for words the caller has checked to be < size() (no second bounds check).
+  void touch_checked_run(std::uint16_t first, std::size_t count) { port_.touch_run(first, count); }
   // Error counters (NERR, NMSTERR) stop at 0xFFFF rather than wrap to small numbers.
   void count_error(std::uint32_t word) {
     const std::uint16_t n = read(word);
