@@ -53,6 +53,12 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   interrupts_.on_clear(
       Irq::Endmk, [](void* tp) { static_cast<TelegramProcessor*>(tp)->list_.end_may_change(); },
       this);
+  interrupts_.on_clear(
+      Irq::Rend, [](void* tp) { static_cast<TelegramProcessor*>(tp)->rend_latched_ = false; },
+      this);
+  interrupts_.on_clear(
+      Irq::Rscend, [](void* tp) { static_cast<TelegramProcessor*>(tp)->rscend_latched_ = false; },
+      this);
 }
 
 // Only the scheduler is touched: the time base may be gone (it cancels its own events).
@@ -68,6 +74,8 @@ void TelegramProcessor::reset(ResetCause) {
   wants_.flag_clear = kNone;
   scheduler_.cancel_owned(tend_event_);
   tend_held_ = false;
+  rend_latched_ = false;
+  rscend_latched_ = false;
   scheduler_.cancel(rscend_event_);
   rscend_event_ = {};
   serial_.interest_changed();
@@ -212,8 +220,8 @@ void TelegramProcessor::finish_receive(const ListItem& item, const wire::Decoded
   stop_receiving();
   // The usual telegram inline: no outcome to look at (no error, no service work).
   if (receive_.finish_plain(item, frame)) {
-    interrupts_.raise(Irq::Rend);
-    if (!service_work_pending()) interrupts_.raise(Irq::Rscend);
+    raise_unless_latched(Irq::Rend, rend_latched_);
+    if (!service_work_pending()) raise_unless_latched(Irq::Rscend, rscend_latched_);
     return;
   }
   ReceivePath::Outcome outcome;

@@ -345,6 +345,25 @@ TEST_F(Cp4Ring, TelegramInterruptsAreLatched) {
   }
 }
 
+// The processor keeps whether INT_REND and INT_RSCEND are latched (a raise then changes
+// nothing): cleared by the host, each is latched again by the next telegram received.
+TEST_F(Cp4Ring, RendAndRscendClearedComeAgainWithTheNextTelegram) {
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(ring.chip(i).reg_read(kIntStat) & kIntRend) << i;
+    ASSERT_TRUE(ring.chip(i).reg_read(kWdCtrl) & kIntRscend) << i;
+    ring.chip(i).reg_write(kIntStat, kIntRend);
+    ring.chip(i).reg_write(kWdCtrl, ring.chip(i).reg_read(kWdCtrl));  // CLR_RSCEND, RW bits kept
+    EXPECT_FALSE(ring.chip(i).reg_read(kIntStat) & kIntRend) << i;
+    EXPECT_FALSE(ring.chip(i).reg_read(kWdCtrl) & kIntRscend) << i;
+  }
+  ring.run_for(kTscyc * sim::kMicrosecond);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_TRUE(ring.chip(i).reg_read(kIntStat) & kIntRend) << i;
+    EXPECT_TRUE(ring.chip(i).reg_read(kWdCtrl) & kIntRscend) << i;
+  }
+}
+
 TEST_F(Cp4Ring, TendAndEndmkComeAtTheirTimes) {
   // INT_TEND at the end of the own telegram on the line; INT_ENDMK at the step out of
   // TEND (datasheet 4.2.3). In a master that time counts from its own cycle start, not from

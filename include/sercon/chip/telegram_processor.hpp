@@ -92,6 +92,12 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
                                                     const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
+  // interrupts_.raise(irq) unless `latched` says it would change nothing; then it does.
+  void raise_unless_latched(Irq irq, bool& latched) {
+    if (latched) return;
+    interrupts_.raise(irq);
+    latched = true;
+  }
   // INT_RSCEND waits for service-container work: mostly none was ever started (no id).
   bool service_work_pending() const {
     return rscend_event_ != sim::Scheduler::EventId{} && scheduler_.pending(rscend_event_);
@@ -141,6 +147,11 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   // INT_TEND at the end of each telegram sent: one owned slot for the processor's life.
   sim::Scheduler::OwnedSlot tend_event_ =
       scheduler_.own(&TelegramProcessor::transmission_ended, this);
+  // INT_REND / INT_RSCEND known to be latched: raised since the flag was last cleared
+  // (Interrupts::on_clear), so a raise changes nothing. Mostly a host clears them now and
+  // then, and every received telegram raises both.
+  bool rend_latched_ = false;
+  bool rscend_latched_ = false;
   // tend_event_ is held (Scheduler::hold_owned): INT_TEND was latched when it was armed and
   // has not been cleared since.
   bool tend_held_ = false;
