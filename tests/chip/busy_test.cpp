@@ -464,12 +464,14 @@ Transmitted transmit_at(bool direct, std::uint16_t word0, std::uint16_t tlen,
 // access at that instant; any other telegram it leaves alone (nothing read, written or
 // marked).
 TEST(Busy, PlainTransmitStartsAsTheGeneralPath) {
-  // One container of 3 words; containers of 1 and 2 words; TLEN beyond the containers'
-  // words (the rest goes out as 0); a container of 7 words (a run past straight-line marks).
+  // One container of 3 words (sent from the RAM as it is); containers of 1 and 2 words; TLEN
+  // beyond the containers' words (the rest goes out as 0), also beyond one container's; a
+  // container of 7 words (a run past straight-line marks).
   const std::vector<std::tuple<std::uint16_t, std::vector<std::uint16_t>>> plain{
       {3, {0x8003, 0x1111, 0x2222, 0x3333, 0x7777}},
       {3, {0x0001, 0x1111, 0x8002, 0x2222, 0x3333, 0x7777}},
       {5, {0x0001, 0x1111, 0x8002, 0x2222, 0x3333, 0x7777}},
+      {5, {0x8003, 0x1111, 0x2222, 0x3333, 0x7777}},
       {7, {0x8007, 1, 2, 3, 4, 5, 6, 7, 0x7777}}};
   for (const std::uint16_t word0 : {std::uint16_t{0x1001}, std::uint16_t{0x1401}}) {  // VAL
     for (const auto& [tlen, after] : plain) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -34,10 +35,26 @@ class TransmitPath {
   // header without DMA or EN whose containers are all plain (gather_run). Word 0 and the
   // container run are marked and counted in one go: the same words, values, BUSYN marks and
   // counts as the general calls (VAL is not needed: no EN to write back, no second buffer).
-  // False for any other telegram, with nothing read or marked. Inline: at every telegram
+  // False for any other telegram, with nothing read or marked. `data` is valid until the
+  // next call or the next RAM write (it may be the RAM's words). Inline: at every telegram
   // start of a list.
   bool gather_plain(const ListItem& item, std::span<const std::uint8_t>& data) {
     if (item.has(telegram::kEn | telegram::kDma | telegram::kDbuf)) return false;
+    // Mostly (an AT) one container of TLEN words: they go out straight from the RAM, laid out
+    // as on the line already (little-endian words), without a copy.
+    static_assert(std::endian::native == std::endian::little);
+    const std::uint32_t control = item.address + telegram::kTransmitHeaderWords;
+    if (control < ram_.size()) {
+      const std::uint16_t* const ram = ram_.words();
+      const std::uint16_t control_word = ram[control];
+      const std::uint16_t len = telegram::container_len(control_word);
+      if (telegram::container_lastdc(control_word) && !telegram::container_svfl(control_word) &&
+          len == item.length && control + 1 + len <= ram_.size()) {
+        ram_.read_and_touch_run(item.address, static_cast<std::uint16_t>(control), 1u + len);
+        data = {reinterpret_cast<const std::uint8_t*>(ram + control + 1), 2u * len};
+        return true;
+      }
+    }
     // Mostly the size it had for the same header last cycle (resize() costs more than this).
     if (words_.size() != item.length) [[unlikely]]
       words_.resize(item.length);
