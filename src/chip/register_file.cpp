@@ -56,6 +56,10 @@ void RegisterFile::on_change(std::function<void(std::uint8_t)> listener) {
   change_listeners_.push_back(std::move(listener));
 }
 
+void RegisterFile::on_change_first(std::function<void(std::uint8_t)> listener) {
+  change_listeners_.insert(change_listeners_.begin(), std::move(listener));
+}
+
 void RegisterFile::reset() {
   resetting_ = true;
   struct Done {

@@ -31,6 +31,7 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
       phas0_(field_ref("PHAS0", chip.variant())),
       phasr_(field_ref("PHASR", chip.variant())),
       flmdtadr_(field_ref("FLMDTADR", chip.variant())),
+      is_816_(chip.variant() == Variant::Sercon816),
       ram_(chip),
       list_(time_base_, ram_, *this),
       transmit_(ram_, dma_),
@@ -46,6 +47,9 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   serial_.on_telegram(this, [](void* tp, const ReceivedTelegram& telegram) {
     static_cast<TelegramProcessor*>(tp)->on_telegram(telegram);
   });
+  read_fields();
+  // Any register: the rare change costs a few loads; most changes are of other registers.
+  regs_.on_change_first([this](std::uint8_t) { read_fields(); });
   wants_.header = &list_.wait();
   wants_.other_address_counts = chip.variant() == Variant::Sercon410B;
   serial_.set_interest(this);
@@ -81,6 +85,17 @@ void TelegramProcessor::reset(ResetCause) {
   serial_.interest_changed();
 }
 
+void TelegramProcessor::read_fields() {
+  Fields& f = fields_;
+  f.master = regmode_.on(regs_);
+  f.phase = static_cast<std::uint8_t>((f.master ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
+  f.address_flag_phase = !f.master && f.phase <= 2;
+  f.entmt = entmt_.on(regs_);
+  f.flmdtadr = flmdtadr_.on(regs_);
+  f.tend_latched = interrupts_.latched(Irq::Tend);
+  f.endmk_latched = interrupts_.latched(Irq::Endmk);
+}
+
 void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
   port_ = port != nullptr ? port : &pass_through_;
 }
@@ -88,7 +103,7 @@ void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
 // --- cycles -----------------------------------------------------------------------------
 
 void TelegramProcessor::on_cycle_start(const CycleStart& start) {
-  const bool is_master = master();  // REGMODE, read once: nothing below writes registers
+  const bool is_master = fields().master;
   const bool own_kind =
       is_master ? start.kind == CycleKind::Master : start.kind != CycleKind::Master;
   if (!own_kind) return;
@@ -104,7 +119,7 @@ void TelegramProcessor::on_cycle_start(const CycleStart& start) {
   // they depend on changes here). A slave's list starts with its AT: most cycle starts
   // change nothing.
   const bool waited = list_.waits_for_telegram();
-  list_.start(phase(is_master) <= 2 ? telegram::kCompt0 : telegram::kCompt1);
+  list_.start(fields().phase <= 2 ? telegram::kCompt0 : telegram::kCompt1);
   if (waited || list_.waits_for_telegram()) serial_.interest_changed();
 }
 
@@ -152,7 +167,7 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
   if (match != TelegramList::Match::Accepted) return;
   bool flag_set = false;
   if (address_flag_phase() && item.has(telegram::kAchk)) {
-    flag_set = !flmdtadr_.on(regs_);
+    flag_set = !fields().flmdtadr;
     flmdtadr_.set(regs_, true);
   }
   try {
@@ -271,17 +286,17 @@ void TelegramProcessor::receive_missed(const ListItem& item) {
 // --- transmission -----------------------------------------------------------------------
 
 void TelegramProcessor::transmit_due(const ListItem& item) {
-  if (!entmt_.on(regs_)) return;  // delta spec 2.6.2: ENTMT = 0 suppresses ATs and MDTs
+  const Fields& f = fields();
+  if (!f.entmt) return;  // delta spec 2.6.2: ENTMT = 0 suppresses ATs and MDTs
   if (!item.has(kCycl) && !item.has(kEn)) return;
-  const bool flag_gated = address_flag_phase();
-  if (flag_gated && !flmdtadr_.on(regs_)) return;
+  if (f.address_flag_phase && !f.flmdtadr) return;
   const sim::Time now = scheduler_.now();
   // The transmitter itself (SerialUnit's send and transmit_free_at are calls into it).
   if (serial_.bit_period() == 0 || serial_.next_bit_edge(now) < serial_.transmitter().free_at()) {
     ++skipped_;
     return;
   }
-  const bool flag_on = chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_);
+  const bool flag_on = is_816_ && fields().flmdtadr;
   std::span<const std::uint8_t> data;
   // The usual telegram in one go: word 0 and its containers read at once (TransmitPath::
   // gather_plain), nothing written, no flag to clear between them.
@@ -292,7 +307,7 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
     // initiated when the flag is set": any telegram started while it is set, also an AT of
     // CP3/4 that it did not gate, so a request answered there brings no second AT after a
     // fall back to CP0..2.
-    if (chip_.variant() == Variant::Sercon816 && flmdtadr_.on(regs_)) flmdtadr_.set(regs_, false);
+    if (is_816_ && fields().flmdtadr) flmdtadr_.set(regs_, false);
     data = transmit_.gather(item, val, port());
   }
   const sim::Time end = serial_.transmitter().send(now, item.adr(), data);
@@ -304,7 +319,7 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
   }
   // Mostly INT_TEND is latched (a host clears it now and then): the event is held, not
   // queued, until the flag is cleared (tend_cleared()).
-  if (interrupts_.latched(Irq::Tend)) [[likely]] {
+  if (fields().tend_latched) [[likely]] {
     scheduler_.hold_owned(tend_event_, end, &TelegramProcessor::transmission_ended);
     tend_held_ = true;
     return;

@@ -74,6 +74,9 @@ class RegisterFile {
   // Any change of a value by the chip's side or the bus calls these (e.g. interrupt
   // outputs follow INTSTAT & IEN).
   void on_change(std::function<void(std::uint8_t address)> listener);
+  // The same, called before every listener added with on_change(): for a unit that keeps
+  // register fields as data, current for whatever the other listeners run.
+  void on_change_first(std::function<void(std::uint8_t address)> listener);
 
   // Table reset values for every register (pins and variant-specific bits: see Chip).
   void reset();

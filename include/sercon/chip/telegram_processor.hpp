@@ -59,18 +59,30 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
     bool flag_set = false;
   };
 
-  bool master() const { return regmode_.on(regs_); }
-  // The phase: PHAS0 (the byte a master sends) in master mode, PHASR (the byte of the last
-  // MST received) in slave mode; `is_master` is master(), read by the caller.
-  std::uint8_t phase(bool is_master) const {
-    return static_cast<std::uint8_t>((is_master ? phas0_.get(regs_) : phasr_.get(regs_)) & 0x07);
-  }
-  // Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it. The
-  // chip tells phases apart only as 0..2 and 3..7 (COMPT0/1, TSCYC0/1), and a drive must not
-  // send at all in CP0 (facts §2), so the gate holds in phase 0 too
-  // (docs/telegram-processing.md). A slave in CP0..2: FLMDTADR gates the ATs. Both inline:
-  // asked at every telegram start and list transmission.
-  bool address_flag_phase() const { return !master() && phase(false) <= 2; }
+  // The register fields the handlers test at every cycle start, telegram start and list
+  // transmission, as data: read again at every change of a register value (RegisterFile::
+  // on_change_first: before any other listener, so whatever runs after the change sees
+  // them current; in a steady ring no value changes). Each use asks fields() again, so a
+  // change between two uses (a write of FLMDTADR, a flag raised) is seen as a read would.
+  struct Fields {
+    bool master = false;  // REGMODE
+    // PHAS0 (the byte a master sends) in master mode, PHASR (the byte of the last MST
+    // received) in slave mode, bits 0..2.
+    std::uint8_t phase = 0;
+    // Delta spec 2.9: in phases 1 and 2 a drive answers only when the master asked it. The
+    // chip tells phases apart only as 0..2 and 3..7 (COMPT0/1, TSCYC0/1), and a drive must
+    // not send at all in CP0 (facts §2), so the gate holds in phase 0 too
+    // (docs/telegram-processing.md). A slave in CP0..2: FLMDTADR gates the ATs.
+    bool address_flag_phase = false;
+    bool entmt = false;
+    bool flmdtadr = false;
+    bool tend_latched = false;   // INT_TEND
+    bool endmk_latched = false;  // INT_ENDMK
+  };
+  const Fields& fields() const { return fields_; }
+  void read_fields();
+  bool master() const { return fields().master; }
+  bool address_flag_phase() const { return fields().address_flag_phase; }
   ServiceChannelPort& port() { return *port_; }
   // A telegram is being received: receiving_ holds it (wants_.receiving is its start).
   bool receiving() const { return wants_.receiving != ReceiveWants::kNone; }
@@ -111,7 +123,7 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   void transmit_due(const ListItem& item) override;
   void receive_missed(const ListItem& item) override;
   void end_reached(const ListItem& item) override;
-  bool end_changes_nothing() const override { return interrupts_.latched(Irq::Endmk); }
+  bool end_changes_nothing() const override { return fields().endmk_latched; }
   void list_fault(const ListFault& fault) override;
   sim::Time start_report_delay() const override;
   void list_moved() override;
@@ -131,6 +143,8 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   SerialUnit& serial_;
   DmaPort& dma_;
   FieldRef regmode_, entmt_, phas0_, phasr_, flmdtadr_;
+  const bool is_816_;  // the variant is the SERCON816
+  Fields fields_;      // read_fields() at construction and at every register change
   TelegramRam ram_;
   BasicTelegramList<TelegramProcessor> list_;
   TransmitPath transmit_;
