@@ -511,6 +511,15 @@ inline void SerialReceiver::arm(const Report& r) {
 template <bool kTelegram>
 void SerialReceiver::fire_report() {
   report_armed_ = false;
+  Entry& back = timeline_.back();
+  if (back.serial == report_.serial && report_.frame == 0 && back.frames.size() == 1 &&
+      back.decode != nullptr) [[likely]] {
+    if constexpr (kTelegram) {
+      return fire_telegram_of_only(back);
+    } else {
+      return fire_start_of_only(back);
+    }
+  }
   const Report r = report_;
   Entry* e = find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
@@ -543,6 +552,53 @@ void SerialReceiver::fire_report() {
     }
     refresh_interest();
     if (plan_telegram_after_start(r)) return;
+  }
+  plan_reports();
+}
+
+// What fire_report<false>() does with the usual report; plan_telegram_after_start() finds
+// the entry again as the last one, mostly.
+inline void SerialReceiver::fire_start_of_only(Entry& last) {
+  const std::uint64_t serial = last.serial;
+  {
+    FrameState& st = last.frames.only();
+    st.start_done = true;
+    const Firing firing(*this, serial);
+    on_start_(st.start, last.decode->frames[0].address);
+  }
+  refresh_interest();
+  Entry& e = timeline_.back();  // the handler may have added entries (and moved them)
+  if (e.serial == serial && e.frames.size() == 1 && e.decode != nullptr && on_telegram_ &&
+      unit_.running()) [[likely]] {
+    FrameState& st = e.frames.only();
+    if (st.end_done || !wants_telegram(st.start, e.decode->frames[0])) return plan_reports();
+    if (!st.telegram_known) telegram_report_of(e, 0);
+    const sim::Time t = st.telegram_report;
+    if (t < scheduler_.now() || t == kNever || report_armed_) return plan_reports();
+    return arm(Report{t, serial, 0, true});
+  }
+  if (plan_telegram_after_start(Report{0, serial, 0, false})) return;
+  plan_reports();
+}
+
+// What fire_report<true>() does with the usual report.
+inline void SerialReceiver::fire_telegram_of_only(Entry& last) {
+  const std::uint64_t serial = last.serial;
+  {
+    FrameState& st = last.frames.only();
+    st.end_done = true;
+    const Firing firing(*this, serial);
+    on_telegram_(ReceivedTelegram{st.start, st.end, report_.when, last.segment.period,
+                                  last.decode->frames[0]});
+  }
+  if (nothing_after_detection(Report{0, serial, 0, true})) {
+    refresh_interest();
+    Entry& now_last = timeline_.back();
+    if (now_last.cut <= scheduler_.now()) {
+      now_last.decode = nullptr;
+      now_last.frames.clear();
+    }
+    return;
   }
   plan_reports();
 }

@@ -153,6 +153,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     FrameState& operator[](std::size_t i) { return data()[i]; }
     const FrameState& operator[](std::size_t i) const { return data()[i]; }
     FrameState& back() { return data()[size_ - 1]; }
+    // The state of an entry of one frame (size() == 1): inline, without data()'s choice.
+    FrameState& only() { return inline_[0]; }
     const FrameState& back() const { return data()[size_ - 1]; }
     void clear() { resize(0); }
     // n new frame states (a burst taken afresh).
@@ -347,7 +349,8 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     return st.telegram_report;
   }
   void work_out_reports(Entry& e, std::size_t frame) const;
-  inline void reports_of(Entry& e, std::size_t frame) const;  // what work_out_reports() does
+  [[gnu::always_inline]] inline void reports_of(
+      Entry& e, std::size_t frame) const;  // what work_out_reports() does
   void telegram_report_of(Entry& e, std::size_t frame) const {
     FrameState& st = e.frames[frame];
     st.telegram_report = pipeline(st.end, e.segment.period);
@@ -385,14 +388,18 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // hop try has asked them (ReadStart, ReadTelegram); Full: asked here.
   inline void consider_one(Entry& e, HopTry known);
   [[gnu::noinline]] void consider_more(Entry& e);  // the others
-  inline void arm(const Report& r);
+  [[gnu::always_inline]] inline void arm(const Report& r);
   // The earliest report of e's frames the processor wants, if before best.when, into best.
   // fresh: e was just taken (none of its report times is known yet).
   void scan(Entry& e, sim::Time now, Report& best, bool fresh);
   bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
                  sim::Time before);
   template <bool kTelegram>  // the detection; false: the start report
-  void fire_report();
+  [[gnu::flatten]] void fire_report();
+  // fire_report() of the usual report, of `last`'s only frame (the last entry: a burst read
+  // fires its reports before the next one comes), without find() or the frame's index.
+  inline void fire_start_of_only(Entry& last);
+  inline void fire_telegram_of_only(Entry& last);
   inline bool plan_telegram_after_start(const Report& fired);  // true: planned
   // A plan would find none; the entries before the fired one are pruned on the way.
   inline bool nothing_after_detection(const Report& fired);
