@@ -25,9 +25,10 @@ class PlainLink {
     return pass_checked(burst, sender, next, out);
   }
   // pass() for a burst known to have bits and a bit period, at or after now: a chip's TxD
-  // hands on only what it was announced, and that was checked where it came in.
-  bool pass_checked(const LineBurst& burst, PassedBursts& sender, LineListener*& next,
-                    const LineBurst*& out) {
+  // hands on only what it was announced, and that was checked where it came in. Always
+  // inline: with two own-telegram paths (TxdOutputs::own_lit) GCC made it a call.
+  [[gnu::always_inline]] bool pass_checked(const LineBurst& burst, PassedBursts& sender,
+                                           LineListener*& next, const LineBurst*& out) {
     if (!plain_) return false;
     if (passed_from_ != &sender && passed_from_ != nullptr) return false;  // mostly the same sender
     passed_from_ = &sender;

@@ -61,6 +61,9 @@ class TxdOutputs final : public PassedBursts {
   // (book_own), as it takes a lazy burst. Else line_burst(). Inline
   // (serial_unit_pass_through.hpp).
   [[gnu::always_inline]] inline void own_burst(const LineBurst& own, sim::Time end);
+  // own_burst() once the line is known to be one lit segment begun before `own`, nothing
+  // unbooked (as after settle()): only the link is left to ask (serial_unit_pass_through.hpp).
+  [[gnu::always_inline]] inline void own_lit(const LineBurst& own, sim::Time end);
   // The own telegram own_burst() left out of the line, into it (first: before anything
   // reads or changes the line). Before the repeater pushes another own telegram too.
   void book_own() {

@@ -110,12 +110,18 @@ inline void TxdOutputs::own_burst(const LineBurst& own, sim::Time end) {
   // What line_burst() would do here, without its prune, drop and plan of the pins (a line of
   // one lit segment before the telegram) or keeping it: the own telegram stays in the
   // repeater's queue until the line takes it (book_own).
-  if (own_unbooked_ == nullptr && pass_unbooked_ && lone_link_ != nullptr && line_.size() == 1) {
+  if (own_unbooked_ == nullptr && line_.size() == 1) {
     const RxdSegment& last = line_.back();
+    if (last.since < own.start && !is_dark(last)) return own_lit(own, end);
+  }
+  line_burst(own);
+}
+
+inline void TxdOutputs::own_lit(const LineBurst& own, sim::Time end) {
+  if (pass_unbooked_ && lone_link_ != nullptr) {
     LineListener* next = nullptr;
     const LineBurst* out = nullptr;
-    if (last.since < own.start && !is_dark(last) &&
-        lone_link_->pass_checked(own, *this, next, out)) {
+    if (lone_link_->pass_checked(own, *this, next, out)) {
       follower_delay_ = out->start - own.start;
       own_unbooked_ = &own;  // first: what `next` is told may come back round to this line
       own_unbooked_end_ = end;
@@ -166,38 +172,67 @@ inline bool SerialRepeater::hand_unbooked(const RxdSegment& segment, sim::Time a
 inline void SerialRepeater::own(LineBurst&& telegram, sim::Time end, sim::Time now) {
   // absorb_passed(), its usual case inline: the lazy burst settles, which leaves nothing
   // forwarded and nothing for prune() to drop (settle()).
-  if (!unit_.receiver().absorb_lazy_for_own(now)) {
-    absorb_forwarded();
-    prune(now);  // first: the telegram itself is not over (it begins at or after now)
-  }
+  if (unit_.receiver().absorb_lazy_for_own(now)) return own_settled(std::move(telegram), end);
+  absorb_forwarded();
+  prune(now);  // first: the telegram itself is not over (it begins at or after now)
   // TxD's line takes the last own telegram before its slot may be reused below (mostly the
   // settle has dropped it: over).
   unit_.outputs().book_own();
-  LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
-  kept.start = telegram.start;
-  kept.bit_period = telegram.bit_period;
-  kept.bits = std::move(telegram.bits);  // no count up and down
-  own_end_ = end;
-  // The telegram as kept: only own() pushes to own_, and the chain that line_burst() starts
-  // sends nothing, so the slot holds it throughout (a prune leaves a slot as it is).
-  const LineBurst& burst = kept;
+  const LineBurst& burst = keep_own(std::move(telegram), end);
   // The only own telegram not yet over (the usual case): what emit_from(burst.start) does,
   // without its walk. The telegram; then, when nothing of the background begins after its
   // start, the background segment in force where it ends (joined half-way unless it begins
   // there); else emit_from() from its end, as emit_from(burst.start) goes on.
   if (own_.size() == 1 && !background_.empty()) {
     unit_.outputs().own_burst(burst, end);
-    if (own_.size() == 1 && background_.back().since <= burst.start) {
-      // Joined half-way (it begins before the telegram's end): emit_background's last case,
-      // here without the call (mostly the idle fill the line is in anyway, a no-op).
-      const RxdSegment& s = background_.back();
-      if (s.since != end)
-        return unit_.outputs().line_condition(end, s.condition_at_join(), s.period);
-      return emit_background(end, background_.size() - 1, false);
-    }
-    return emit_from(end);
+    return own_after(burst, end);
   }
   emit_from(burst.start);
+}
+
+// own() right after a settle (a slave's usual case): the line and TxD's hold the settled
+// burst alone, and nothing forwarded, no own telegram and nothing of TxD's unbooked is left
+// (settle()). So book_own() has nothing to book, and own_burst()'s tests of the line come
+// out true but for the link's (TxdOutputs::own_lit) when the burst began before the
+// telegram.
+// When nothing came back round to the line meanwhile (it holds the settled burst alone) and
+// the telegram goes at that burst's rate, own()'s idle fill where it ends is a no-op
+// (line_condition(): the line's last segment, booked or not, is the telegram). Held to
+// own() by the lazy-hops-on/off ring tests (with lazy hops off nothing settles).
+inline void SerialRepeater::own_settled(LineBurst&& telegram, sim::Time end) {
+  const LineBurst& kept = keep_own(std::move(telegram), end);  // own_ was empty
+  // The settled burst mostly began before now; a fibre of no delay lets it begin now.
+  if (background_.front().since < kept.start) {
+    unit_.outputs().own_lit(kept, end);
+  } else {
+    unit_.outputs().own_burst(kept, end);
+  }
+  if (background_.size() == 1 && own_.size() == 1 && background_.front().period == kept.bit_period)
+    return;
+  own_after(kept, end);
+}
+
+// The telegram as kept: only own() pushes to own_, and the chain that line_burst() starts
+// sends nothing, so the slot holds it throughout (a prune leaves a slot as it is).
+inline const LineBurst& SerialRepeater::keep_own(LineBurst&& telegram, sim::Time end) {
+  LineBurst& kept = own_.reuse_back();  // every field set (own_ goes by drop_front())
+  kept.start = telegram.start;
+  kept.bit_period = telegram.bit_period;
+  kept.bits = std::move(telegram.bits);  // no count up and down
+  own_end_ = end;
+  return kept;
+}
+
+// own() after TxD has the telegram: the background in force where it ends (see own()).
+inline void SerialRepeater::own_after(const LineBurst& burst, sim::Time end) {
+  if (own_.size() == 1 && background_.back().since <= burst.start) {
+    // Joined half-way (it begins before the telegram's end): emit_background's last case,
+    // here without the call (mostly the idle fill the line is in anyway, a no-op).
+    const RxdSegment& s = background_.back();
+    if (s.since != end) return unit_.outputs().line_condition(end, s.condition_at_join(), s.period);
+    return emit_background(end, background_.size() - 1, false);
+  }
+  emit_from(end);
 }
 
 inline void SerialRepeater::absorb_passed() {

@@ -48,6 +48,12 @@ class SerialRepeater {
   // the sender has it.
   [[gnu::always_inline]] inline void own(LineBurst&& telegram, sim::Time end,
                                          sim::Time now);  // serial_unit_pass_through.hpp
+  // own() right after the settle of the burst before it (serial_unit_pass_through.hpp).
+  [[gnu::always_inline]] inline void own_settled(LineBurst&& telegram, sim::Time end);
+  // own() once TxD has the telegram: the background where it ends.
+  [[gnu::always_inline]] inline void own_after(const LineBurst& burst, sim::Time end);
+  // The telegram pushed to own_ (its bits taken), own_end_ set.
+  [[gnu::always_inline]] inline const LineBurst& keep_own(LineBurst&& telegram, sim::Time end);
   // REPON or the bit rate changed.
   void refresh();
 

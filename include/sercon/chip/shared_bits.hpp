@@ -82,7 +82,8 @@ class SharedBits {
   }
   // operator=() of a handle known to hold bits (a lazy hop's burst, checked where it came
   // in): counted up first, so the same bits again come out even without the comparison.
-  void assign_held(const SharedBits& other) noexcept {
+  // Always inline: GCC made it a call at some of the settle's writes.
+  [[gnu::always_inline]] void assign_held(const SharedBits& other) noexcept {
     Node* const n = other.node_;
     ++n->count;
     drop(std::exchange(node_, n));
