@@ -36,7 +36,8 @@ void SerialReceiver::line_burst(const LineBurst& burst) {
       at->read_try_ = HopTry::Full;
       at->absorb_lazy();
       Handed handed;
-      if (!(read == HopTry::Full ? at->announce(*b, handed) : at->read(*b, read, handed))) return;
+      if (!(read == HopTry::Full ? at->announce_or_read(*b, handed) : at->read(*b, read, handed)))
+        return;
       if (handed.receiver == nullptr || handed.receiver == at) [[unlikely]]
         return hand_copy(*handed.next, *handed.out);
       b = handed.out;
@@ -87,6 +88,20 @@ void SerialReceiver::refresh_hop_period() {
   hop_by_sclk_ = repeater.by_sclk();
   hop_due_ = SerialUnit::kRepeaterDelayBits * hop_period_ + hop_sclk_ - 1;
   hop_lag_ = report_lag(hop_period_);
+  refresh_unrepeated_reads();
+}
+
+// A burst at its rate after now, of one frame, at such a node: read() takes it as
+// announce() would (asking the processor's answers itself, Full). Its decode is only looked
+// for (mostly there: the transmitter seeds it), so that this calls nothing but the one it
+// hands the burst to (cheaper by its saved registers).
+bool SerialReceiver::announce_or_read(const LineBurst& b, Handed& handed) {
+  if (unrepeated_reads_ && b.bit_period == unit_.bit_period() && b.start > scheduler_.now() &&
+      chain_depth < kMaxChain) {
+    const BurstDecode* decode = b.bits.decodes().whole.get();
+    if (decode != nullptr && decode->frames.size() == 1) return read(b, HopTry::Full, handed);
+  }
+  return announce(b, handed);
 }
 
 // What consider() would plan for the burst's frames in the telegram processor's present

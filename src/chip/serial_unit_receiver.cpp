@@ -200,10 +200,11 @@ bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
   // A burst taken: the monitor hears nothing after a good signal. Mostly nothing is to tell
   // it, nor RECACTN (replan() would do nothing), so nothing outside the node has run since
   // the hop try: the repeater is on at this rate, the chain short enough (pass_handing()
-  // need not ask), and the burst leaves when a hop's would.
+  // need not ask), and the burst leaves when a hop's would (at a master, nothing leaves).
   if (changed || !holds_more_than(1) || !good((timeline_.end() - 2)->segment) || !recactn_.idle())
       [[unlikely]]
     return read_told(e, changed, handed);
+  if (unrepeated_reads_) return false;  // the repeater is off: nothing goes on (pass_handing())
   ++chain_depth;
   const auto due = static_cast<std::uint64_t>(at + hop_due_);
   const sim::Time leaves = static_cast<sim::Time>(hop_by_sclk_.divide(due)) * hop_sclk_;

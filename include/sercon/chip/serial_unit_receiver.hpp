@@ -249,7 +249,13 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // announce(burst, handed) of a burst the hop try found `wanted` (ReadStart, ReadTelegram):
   // it comes after now at the unit's rate, with one frame, and the processor's answers for
   // it are known (twin tests: lazy hops on and off, which reads by announce()).
+  // At a node whose repeater is off (a master) with lazy hops on, such a burst is read by
+  // read() too, Full (consider_one() asks the answers), from announce_or_read(); it then
+  // hands nothing on. Lazy hops off, it goes by announce() (the same twin tests).
   bool read(const LineBurst& burst, HopTry wanted, Handed& handed);
+  // Out of line: line_burst()'s loop (its code matters at 254 slaves) calls it where it
+  // called announce().
+  [[gnu::noinline]] bool announce_or_read(const LineBurst& burst, Handed& handed);
   [[gnu::cold, gnu::noinline]] bool read_told(const Entry& e, bool changed, Handed& handed);
   [[gnu::cold, gnu::noinline]] static void hand_copy(LineListener& next, const LineBurst& out);
   // std::invalid_argument for a burst without bits or a bit period.
@@ -272,6 +278,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     } else {
       hop_check_ = HopCheck::Frames;
     }
+    refresh_unrepeated_reads();
+  }
+  void refresh_unrepeated_reads() {
+    unrepeated_reads_ =
+        lazy_hops_ && unit_.running() && !unit_.repeater().on() && on_start_ && on_telegram_;
   }
   // Whether the processor may want a frame (the lazy checks): only those to address 255
   // are asked while it wants no other (ReceiveInterest::may_want_addressed).
@@ -468,6 +479,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   sim::Time hop_sclk_ = 1;
   sim::Reciprocal hop_by_sclk_{1};
   HopCheck hop_check_ = HopCheck::None;
+  // Lazy hops on, running, the repeater off (a master), both handlers: announce_or_read()
+  // may read(). Kept with hop_period_ and hop_check_.
+  bool unrepeated_reads_ = false;
   HopTry read_try_ = HopTry::Full;  // noted by a hop try that ends in a read(); else Full
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
