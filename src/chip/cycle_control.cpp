@@ -50,6 +50,8 @@ CycleControl::CycleControl(TimeBase& time_base, Interrupts& interrupts, sim::Sig
       next_cycle_(time_base.scheduler(), time_base.mclk(), [this] { master_cycle_start(); }),
       mst_send_(time_base.scheduler(), time_base.mclk(), [this] { mst_due(); }),
       mst_event_(scheduler_.own(&CycleControl::owned_mst_action, this)) {
+  cycst_latched_ = interrupts_.latched(Irq::Cycst);
+  regs_.on_change_first([this](std::uint8_t) { cycst_latched_ = interrupts_.latched(Irq::Cycst); });
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
   cyc_clk_.react([this](sim::Level level) { on_cyc_clk(level); });
   time_base_.on_divider_change(
@@ -189,7 +191,7 @@ void CycleControl::slave_mst(Edge load) {
   window_.judge_at(false, load);
   time_base_.start_cycle_at(load, CycleKind::Mst,
                             [this](const CycleStart& start) { on_cycle_start(start); });
-  interrupts_.raise(Irq::Cycst);
+  raise_cycst();
 }
 
 // CYC_CLK has a pull-up (datasheet 3.3), so a floating input reads high.
@@ -249,7 +251,7 @@ bool CycleControl::master_cycle_starts_now() const {
 }
 
 void CycleControl::send_mst() {
-  interrupts_.raise(Irq::Cycst);
+  raise_cycst();
   for (std::size_t i = 0; i < send_mst_listeners_.size(); ++i) send_mst_listeners_[i]();
 }
 

@@ -9,7 +9,16 @@ CycleWindow::CycleWindow(TimeBase& time_base, Interrupts& interrupts,
     : time_base_(time_base),
       interrupts_(interrupts),
       closed_empty_(std::move(closed_empty)),
-      close_event_(time_base, this) {}
+      close_event_(time_base, this) {
+  read_fields();
+  time_base_.regs().on_change_first([this](std::uint8_t) { read_fields(); });
+}
+
+void CycleWindow::read_fields() {
+  const RegisterFile& regs = time_base_.regs();
+  jtscyc1_ = static_cast<std::int16_t>(regs.field_value(kJtscyc1));
+  jtscyc2_ = static_cast<std::int16_t>(regs.field_value(kJtscyc2));
+}
 
 void CycleWindow::closes(void* window) { static_cast<CycleWindow*>(window)->close(); }
 

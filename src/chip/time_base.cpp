@@ -28,8 +28,19 @@ TimeBase::TimeBase(sim::Scheduler& scheduler, RegisterFile& regs, const MclkGrid
       regmode_(field_ref("REGMODE", regs.variant())),
       phas0_(field_ref("PHAS0", regs.variant())),
       phasr_(field_ref("PHASR", regs.variant())) {
+  read_fields();
+  // Any register: the rare change costs a few loads; most changes are of other registers.
+  regs_.on_change_first([this](std::uint8_t) { read_fields(); });
   regs_.on_read(kTcnt, [this](std::uint16_t) { return tcnt(); });
   regs_.on_change([this](std::uint8_t address) { on_register_change(address); });
+}
+
+void TimeBase::read_fields() {
+  Fields& f = fields_;
+  const std::uint16_t phase_byte = regmode_.on(regs_) ? phas0_.get(regs_) : phasr_.get(regs_);
+  f.tscyc = regs_.field_value((phase_byte & 0x07) <= 2 ? kTscyc0Register : kTscyc1Register);
+  f.mclkst = mclkst_.get(regs_);
+  f.tcntst = regs_.field_value(kTcntstRegister);
 }
 
 TimeBase::~TimeBase() {

@@ -77,6 +77,10 @@ class CycleControl : public ChipUnit {
     if (slave_cycle || synced_master) window_.expect_next(start);
   }
   void on_divider_change(Edge edge, std::int64_t period);
+  // INT_CYCST, raised at every cycle start: mostly latched already, when the raise changes nothing.
+  void raise_cycst() {
+    if (!cycst_latched_) interrupts_.raise(Irq::Cycst);
+  }
   void cancel_own_events();
   void cancel_all();
 
@@ -90,6 +94,9 @@ class CycleControl : public ChipUnit {
   bool running_ = false;
   Mode mode_ = Mode::Slave;
   bool cyc_clk_high_ = true;
+  // INT_CYCST latched, kept as data: read again at every register value change by a listener
+  // that runs before all others (RegisterFile::on_change_first).
+  bool cycst_latched_ = false;
   bool timer_idle_ = false;   // master timer waiting for a non-zero TSCYC
   DividerTicks cycle_ticks_;  // master: restarted at each cycle start
   TickAlarm next_cycle_;

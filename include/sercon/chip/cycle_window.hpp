@@ -40,9 +40,8 @@ class CycleWindow {
     state_ = State::Unsynced;
     tscyc_ = start.tscyc;
     if (tscyc_ == 0) return;
-    const RegisterFile& regs = time_base_.regs();
-    opens_ = tscyc_ + static_cast<std::int16_t>(regs.field_value(kJtscyc1));
-    closes_ = tscyc_ + static_cast<std::int16_t>(regs.field_value(kJtscyc2));
+    opens_ = tscyc_ + jtscyc1_;
+    closes_ = tscyc_ + jtscyc2_;
     state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
     // A window programmed to close before the counter's start closes at the first step.
     // Deferred: mostly the next MST comes first and drops it.
@@ -87,6 +86,7 @@ class CycleWindow {
   static constexpr std::uint8_t kJtscyc2 = 0x16;
 
   sim::Time now() const { return time_base_.scheduler().now(); }
+  void read_fields();
   static void closes(void* window);  // the close event (function + context)
   void close();
   void missed_judged(bool master, std::int64_t position);  // judge() after an empty window
@@ -98,6 +98,10 @@ class CycleWindow {
   std::uint16_t tscyc_ = 0;
   std::int64_t opens_ = 0;
   std::int64_t closes_ = 0;
+  // JTSCYC1 / JTSCYC2 as signed numbers, kept as data: read again at every register value
+  // change by a listener that runs before all others (RegisterFile::on_change_first).
+  std::int16_t jtscyc1_ = 0;
+  std::int16_t jtscyc2_ = 0;
   TimeBase::OwnedEvent close_event_;
 };
 

@@ -77,11 +77,8 @@ class TimeBase : public ChipUnit {
   std::uint16_t tcnt() const { return static_cast<std::uint16_t>(count() & 0xFFFF); }
   // TSCYC0 in phases 0..2, TSCYC1 in phases 3..7. The phase is PHAS0 (the byte a master
   // sends) in master mode and PHASR (the byte of the last MST received) in slave mode.
-  // Inline: read at every cycle start.
-  std::uint16_t tscyc() const {
-    const std::uint16_t phase_byte = regmode_.on(regs_) ? phas0_.get(regs_) : phasr_.get(regs_);
-    return regs_.field_value((phase_byte & 0x07) <= 2 ? kTscyc0Register : kTscyc1Register);
-  }
+  // Inline: read at every cycle start (kept as data: read_fields()).
+  std::uint16_t tscyc() const { return fields_.tscyc; }
 
   // A cycle starts now (called at an MCLK edge): the counter is loaded with TCNTST and
   // its divider restarts from MCLKST. Pending cycle-time events later than now are
@@ -98,8 +95,8 @@ class TimeBase : public ChipUnit {
   [[gnu::always_inline]] void start_cycle_at(Edge start, CycleKind kind, First first) {
     if (!running_) return;
     drop_future_events();
-    ticks_ = DividerTicks::started_at(start, mclkst_.get(regs_), tick_period());
-    base_ = regs_.field_value(kTcntstRegister);
+    ticks_ = DividerTicks::started_at(start, fields_.mclkst, tick_period());
+    base_ = fields_.tcntst;
     // The first tick is at least one edge after `start`, the first edge at or after now: the
     // counter holds TCNTST.
     begin(kind, base_, first);
@@ -288,11 +285,20 @@ class TimeBase : public ChipUnit {
     }
   }
   void on_register_change(std::uint8_t address);
+  void read_fields();
 
   sim::Scheduler& scheduler_;
   RegisterFile& regs_;
   MclkGrid mclk_;
   FieldRef mclkdiv_, mclkst_, regmode_, phas0_, phasr_;
+  // The register fields a cycle start reads, kept as data: read again at every register value
+  // change by a listener that runs before all others (RegisterFile::on_change_first), so
+  // whatever a listener runs sees them current. In a steady ring no value changes.
+  struct Fields {
+    std::uint16_t tscyc = 0;   // tscyc()
+    std::uint16_t mclkst = 0;  // MCLKST
+    std::uint16_t tcntst = 0;  // TCNTST
+  } fields_;
   bool running_ = false;
   std::int64_t divider_ = 0;  // MCLKDIV in force
   std::int64_t base_ = 0;     // counter value before the first tick of ticks_
