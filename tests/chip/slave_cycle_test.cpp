@@ -64,6 +64,22 @@ TEST(SlaveCycle, FirstMstLoadsTheCounterAndRaisesCycst) {
   EXPECT_EQ(b.window_flags(), 0);
 }
 
+// INT_CYCST is latched at every accepted MST: once the host clears it, the next MST raises it
+// again (CycleControl keeps "latched" as data and skips the raise while it is set).
+TEST(SlaveCycle, CycstClearedComesAgainWithTheNextMst) {
+  SlaveBench b;
+  Time load = b.mst(100 * kMicrosecond);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_TRUE(b.flags_at(load, kIntCycst));
+    b.chip.reg_write(kIntStat, kIntCycst);  // W1C
+    EXPECT_EQ(b.chip.reg_read(kIntStat) & kIntCycst, 0);
+    const Time next = load + kCycle * kMicrosecond;
+    EXPECT_FALSE(b.flags_at(next - 3 * b.mclk(), kIntCycst));
+    load = b.mst_loaded_at(next);
+  }
+  EXPECT_TRUE(b.flags_at(load, kIntCycst));
+}
+
 TEST(SlaveCycle, RegularMstsRaiseNoWindowFlag) {
   SlaveBench b;
   Time load = b.mst(100 * kMicrosecond);
