@@ -78,6 +78,7 @@ void TimeBase::reset(ResetCause) {
 // SERCOS cycle start, so no listener hears of it.
 void TimeBase::release() {
   running_ = true;
+  ++cycles_;
   divider_ = mclkdiv_.get(regs_);
   const Edge start = mclk_.first_at_or_after(scheduler_.now());
   free_ = DividerTicks::started_at(start, tick_period(), tick_period());
@@ -140,6 +141,8 @@ void TimeBase::on_register_change(std::uint8_t address) {
   if (divider == divider_) return;
   divider_ = divider;
   if (!running_) return;
+  // Lazily held events' times worked out on the grid they were held on.
+  for (OwnedEvent* owned : owned_) scheduler_.settle_held(owned->slot_);
   const Edge edge = mclk_.first_at_or_after(scheduler_.now());
   ticks_.change_period(edge, tick_period());
   free_.change_period(edge, tick_period());

@@ -242,15 +242,49 @@ void Scheduler::disown(OwnedSlot owned) {
   cancel_owned(owned);  // even: not pending
   Slot& slot = slots_[owned];
   if ((slot.next_free & kListed) != 0) std::erase(held_, owned);
+  if ((slot.next_free & kResolver) != 0)
+    std::erase_if(resolvers_, [&](const Resolver& r) { return r.slot == owned; });
   slot.context = nullptr;
   ++slot.generation;  // odd, as a taken slot's: free_slot() makes it even again
   free_slot(owned);   // and links it (next_free no longer marks it owned)
 }
 
 std::size_t Scheduler::pending_count() const {
-  return static_cast<std::size_t>(std::count_if(
-      slots_.begin(), slots_.end(),
-      [&](const Slot& slot) { return slot.generation % 2 == 1 && !(held(slot) && passed(slot)); }));
+  return static_cast<std::size_t>(
+      std::count_if(slots_.begin(), slots_.end(), [&](const Slot& slot) {
+        return slot.generation % 2 == 1 &&
+               !(held(slot) && passed_or_over(static_cast<std::uint32_t>(&slot - slots_.data())));
+      }));
+}
+
+Time Scheduler::held_when(std::uint32_t index) const {
+  const Slot& slot = slots_[index];
+  if ((slot.next_free & kLazy) == 0) return slot.when;
+  for (const Resolver& r : resolvers_) {
+    if (r.slot == index) return r.resolve(slot.context);
+  }
+  return slot.when;  // not reached: a lazy slot is in resolvers_
+}
+
+void Scheduler::settle_lazy(std::uint32_t index) {
+  Slot& slot = slots_[index];
+  if ((slot.next_free & kLazy) == 0) return;
+  if (held(slot)) {
+    const Time when = held_when(index);
+    if (when == kUnheld) {
+      slot.next_free &= ~(kHeld | kLazy);
+      ++slot.generation;  // over when it was held: it never runs
+      return;
+    }
+    slot.when = when;
+  }
+  slot.next_free &= ~kLazy;
+}
+
+void Scheduler::list_resolver(OwnedSlot owned, Resolve resolve) {
+  Slot& slot = slots_[owned];
+  if ((slot.next_free & kListed) == 0) held_.push_back(owned);
+  if ((slot.next_free & kResolver) == 0) resolvers_.push_back(Resolver{owned, resolve});
 }
 
 void Scheduler::queue_held_slot(std::uint32_t index) {
@@ -260,6 +294,7 @@ void Scheduler::queue_held_slot(std::uint32_t index) {
 }
 
 void Scheduler::queue_held(OwnedSlot owned) {
+  settle_lazy(owned);
   Slot& slot = slots_[owned];
   if (!held(slot)) return;
   if (passed(slot)) {
@@ -273,6 +308,7 @@ void Scheduler::queue_held(OwnedSlot owned) {
 bool Scheduler::queue_held_through(Time next) {
   bool queued = false;
   for (const std::uint32_t index : held_) {
+    settle_lazy(index);
     const Slot& slot = slots_[index];
     if (held(slot) && slot.when <= next && !passed(slot)) {
       queue_held_slot(index);
@@ -286,6 +322,7 @@ bool Scheduler::queue_held_through(Time next) {
 // in its place, so the moved event comes after them.
 void Scheduler::queue_held_at(Time when) {
   for (const std::uint32_t index : held_) {
+    settle_lazy(index);
     const Slot& slot = slots_[index];
     if (held(slot) && slot.when == when && !passed(slot)) queue_held_slot(index);
   }
@@ -300,6 +337,7 @@ bool Scheduler::move(EventId id, Time when) {
 
 void Scheduler::move_owned(OwnedSlot owned, Time when) {
   if (when < now_) throw_past("Scheduler::move_owned", when, now_);
+  settle_lazy(owned);  // one over when it was held is not pending
   if (!owned_pending(owned)) {
     throw std::logic_error("Scheduler::move_owned: owned slot " + std::to_string(owned) +
                            " is not pending");

@@ -681,7 +681,8 @@ TEST(Scheduler, ARunInsideAnEventLeavesTheOuterRunItsOwnEnd) {
 // flag is set and queues it (queue_held()) when an event clears the flag. Events note the
 // flag when they run; clears and notes are often due at the owner's very time, scheduled
 // before and after its hold, some moved there; the owner is armed from outside and from
-// events (also for now), cancelled and moved; run by run_until() and step().
+// events (also for now), cancelled and moved; run by run_until() and step(). Some holds
+// are lazy (hold_owned_lazily), their time given by the owner when asked.
 struct HeldOwner {
   Scheduler& s;
   bool& flag;
@@ -693,7 +694,10 @@ struct HeldOwner {
   HeldOwner(Scheduler& scheduler, bool& f, bool hold) : s(scheduler), flag(f), held_form(hold) {
     if (held_form) slot = s.own(&HeldOwner::raise, this);
   }
+  Time lazy_when = 0;  // a lazy hold's time, given when asked (resolve)
+
   static void raise(void* self) { static_cast<HeldOwner*>(self)->flag = true; }
+  static Time resolve(void* self) { return static_cast<HeldOwner*>(self)->lazy_when; }
   bool pending() const {
     if (!held_form) return s.pending(id);
     return s.owned_pending(slot) && !(held && s.held_passed(slot));
@@ -705,7 +709,13 @@ struct HeldOwner {
     }
     if (s.owned_pending(slot)) s.cancel_owned(slot);  // a passed held one
     if (flag) {
-      s.hold_owned(slot, when, &HeldOwner::raise);
+      // Every other 10 ps held lazily: its time known only when asked.
+      if (when / 10 % 2 == 0) {
+        lazy_when = when;
+        s.hold_owned_lazily(slot, &HeldOwner::raise, &HeldOwner::resolve);
+      } else {
+        s.hold_owned(slot, when, &HeldOwner::raise);
+      }
       held = true;
       return;
     }
@@ -788,6 +798,36 @@ Seen run_held_twin(std::uint32_t seed, bool held_form) {
 
 TEST(Scheduler, AHeldOwnedEventActsAsAtWouldThroughRandomSteps) {
   expect_twins_agree(run_held_twin, 7919u);
+}
+
+// A lazy hold whose time proves to be over (kUnheld) never runs: not pending once asked,
+// passed, and queue_held() queues nothing. Held lazily again with a time ahead, it is queued.
+TEST(Scheduler, ALazilyHeldEventOverWhenHeldNeverRuns) {
+  struct Owner {
+    int runs = 0;
+    Time when = Scheduler::kUnheld;
+    static void run(void* o) { ++static_cast<Owner*>(o)->runs; }
+    static Time resolve(void* o) { return static_cast<Owner*>(o)->when; }
+  } owner;
+  Scheduler s;
+  const auto slot = s.own(&Owner::run, &owner);
+  s.run_until(100);
+  s.hold_owned_lazily(slot, &Owner::run, &Owner::resolve);
+  EXPECT_TRUE(s.owned_pending(slot));
+  EXPECT_TRUE(s.held_passed(slot));
+  EXPECT_EQ(s.pending_count(), 0u);
+  s.queue_held(slot);
+  EXPECT_FALSE(s.owned_pending(slot));
+  s.run_until(1000);
+  EXPECT_EQ(owner.runs, 0);
+  owner.when = 2000;
+  s.hold_owned_lazily(slot, &Owner::run, &Owner::resolve);
+  EXPECT_EQ(s.pending_count(), 1u);
+  EXPECT_FALSE(s.held_passed(slot));
+  s.queue_held(slot);
+  EXPECT_EQ(s.next_time(), 2000);
+  s.run_until(3000);
+  EXPECT_EQ(owner.runs, 1);
 }
 
 TEST(Time, BitAndClockPeriodsAreExactPicoseconds) {

@@ -158,6 +158,7 @@ class BasicTelegramList : public TelegramListTypes {
   // Time-base actions (function + context: no std::function per armed item).
   static void transmit_time(void* list);
   static void end_time(void* list);
+  static sim::Time end_step(void* list);  // a lazily held end marker's time (Scheduler::Resolve)
   [[gnu::flatten]] void fire_transmit();
   void close_window();
   void fire_end();

@@ -139,15 +139,22 @@ bool BasicTelegramList<Client>::arm(const ListItem& item) {
     case telegram::Kind::Receive:
       return arm_receive(item);
     case telegram::Kind::EndMarker: {
-      // Mostly INT_ENDMK is latched: the event is held, not queued (end_may_change()).
-      const bool hold = client_.end_changes_nothing();
-      if (!(hold ? time_base_.hold_at_cycle_time(event_, item.time, &BasicTelegramList::end_time)
-                 : time_base_.at_cycle_time(event_, item.time, &BasicTelegramList::end_time))) {
+      // Mostly INT_ENDMK is latched: the event is held, not queued (end_may_change()), and
+      // its time worked out only if asked (end_step). Late, end_reached() would change
+      // nothing: the held event then never runs.
+      if (client_.end_changes_nothing()) {
+        time_base_.hold_at_cycle_time(event_, item.time, &BasicTelegramList::end_time,
+                                      &BasicTelegramList::end_step);
+        end_held_ = true;
+        set_state(State::End);
+        return true;
+      }
+      if (!time_base_.at_cycle_time(event_, item.time, &BasicTelegramList::end_time)) {
         set_state(State::Idle);
         client_.end_reached(item);
         return false;
       }
-      end_held_ = hold;
+      end_held_ = false;
       set_state(State::End);
       return true;
     }
@@ -187,6 +194,12 @@ bool BasicTelegramList<Client>::arm_receive(const ListItem& item) {
 template <class Client>
 void BasicTelegramList<Client>::transmit_time(void* list) {
   static_cast<BasicTelegramList*>(list)->fire_transmit();
+}
+
+template <class Client>
+sim::Time BasicTelegramList<Client>::end_step(void* list) {
+  auto* const self = static_cast<BasicTelegramList*>(list);
+  return self->time_base_.resolve_held(self->event_);
 }
 
 template <class Client>

@@ -144,7 +144,8 @@ class TimeBase : public ChipUnit {
     // Pending: armed, and it has not run, been cancelled or dropped since.
     bool pending() const { return scheduler_.owned_pending(slot_); }
     // When the event is due: meaningful only while it is pending (a cheap first test before
-    // asking the scheduler whether it is).
+    // asking the scheduler whether it is). Not for one held (hold_at_cycle_time) until its
+    // time is worked out.
     sim::Time when() const { return when_; }
     void cancel() { scheduler_.cancel_owned(slot_); }  // if pending
 
@@ -154,7 +155,9 @@ class TimeBase : public ChipUnit {
     sim::Scheduler& scheduler_;
     sim::Scheduler::OwnedSlot slot_;
     std::int64_t cycle_time_ = 0;
-    sim::Time when_ = 0;  // kept up to date while pending
+    sim::Time when_ = 0;     // kept up to date while pending (held lazily: now at the hold)
+    sim::Time held_at_ = 0;  // when it was held lazily, and in which cycle (cycles_)
+    std::uint64_t held_cycle_ = 0;
   };
   // at_cycle_time() into `owned` (whose earlier event has run or was cancelled), with its
   // context. False (and no event) when the step is not ahead.
@@ -173,13 +176,34 @@ class TimeBase : public ChipUnit {
       scheduler_.defer_owned(owned.slot_, when, action);
     });
   }
-  // The same, held (Scheduler::hold_owned): for an event whose action would change nothing
-  // (INT_ENDMK raised while latched); the owner calls queue_held() when that may change.
-  [[gnu::always_inline]] bool hold_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
-                                                 sim::Scheduler::Action action) {
-    return owned_at_cycle_time(owned, cycle_time, [&](sim::Time when) {
-      scheduler_.hold_owned(owned.slot_, when, action);
-    });
+  // The same, held (Scheduler::hold_owned_lazily): for an event whose action would change
+  // nothing (INT_ENDMK raised while latched); the owner calls queue_held() when that may
+  // change. Its time is worked out only when something asks, by `resolve`, which gives
+  // resolve_held(owned) (the owner's function of the slot's context). Not scheduled when the
+  // step is not ahead, as at_cycle_time(); the owner is not told so (its late handling
+  // would change nothing either).
+  [[gnu::always_inline]] void hold_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
+                                                 sim::Scheduler::Action action,
+                                                 sim::Scheduler::Resolve resolve) {
+    scheduler_.hold_owned_lazily(owned.slot_, action, resolve);
+    owned.cycle_time_ = cycle_time;
+    const sim::Time now = scheduler_.now();
+    owned.when_ = now;  // not known yet: taken as now, so the next cycle start leaves it
+    owned.held_at_ = now;
+    owned.held_cycle_ = cycles_;
+  }
+  // A held event's time: its step's as at_cycle_time() would have found it when it was
+  // held, or Scheduler::kUnheld if the step was not ahead then, or a cycle started
+  // since (which would have dropped it or found it passed: either way it never runs). The
+  // grid is the hold's: an MCLKDIV change settles the event first.
+  sim::Time resolve_held(OwnedEvent& owned) const {
+    if (owned.held_cycle_ != cycles_) return sim::Scheduler::kUnheld;
+    const std::int64_t tick = tick_of(owned.cycle_time_);
+    if (!running_ || tick <= ticks_.ticks_before_change()) return sim::Scheduler::kUnheld;
+    const sim::Time when = mclk_.time_of(ticks_.edge_of(tick));
+    if (when <= owned.held_at_) return sim::Scheduler::kUnheld;
+    owned.when_ = when;
+    return when;
   }
   void queue_held(OwnedEvent& owned) { scheduler_.queue_held(owned.slot_); }
   void cancel(CycleEvent event) { scheduler_.cancel(event); }
@@ -259,6 +283,7 @@ class TimeBase : public ChipUnit {
   // still run; later ones belonged to the old cycle and are dropped. Earlier ones have run
   // or were cancelled.
   [[gnu::always_inline]] void drop_future_events() {
+    ++cycles_;  // lazily held events: resolve_held() finds them over
     const sim::Time now = scheduler_.now();
     if (!planned_.empty()) drop_future_planned(now);
     // An owned event due now stays as well (cancelling one that ran or was cancelled does nothing).
@@ -300,6 +325,7 @@ class TimeBase : public ChipUnit {
     std::uint16_t tcntst = 0;  // TCNTST
   } fields_;
   bool running_ = false;
+  std::uint64_t cycles_ = 0;  // cycles ended (drop_future_events) and releases
   std::int64_t divider_ = 0;  // MCLKDIV in force
   std::int64_t base_ = 0;     // counter value before the first tick of ticks_
   DividerTicks ticks_;        // the cycle counter's divider

@@ -135,11 +135,33 @@ class Scheduler {
     slot.action = action;
     if ((flags & kListed) == 0) [[unlikely]]  // the slot's first hold
       held_.push_back(owned);
-    slot.next_free = flags | kHeld | kListed;
+    slot.next_free = (flags & ~kLazy) | kHeld | kListed;
   }
+  // hold_owned() for an owner that knows its event's time only by working it out (a list's
+  // end marker at its step of the cycle counter): the event takes its order now, and
+  // `resolve(context)` (the slot's context) gives its time when something asks for it: the
+  // time hold_owned() would have been given now, or kUnheld if the event was over already
+  // (it never runs). The owner keeps that answer unchanged, or asks settle_held() before
+  // changing it. A slot keeps the `resolve` of its first lazy hold. Same rules as
+  // hold_owned() otherwise. Inline: nothing is worked out.
+  static constexpr Time kUnheld = std::numeric_limits<Time>::max();
+  using Resolve = Time (*)(void* context);
+  void hold_owned_lazily(OwnedSlot owned, Action action, Resolve resolve) {
+    if (owned_pending(owned)) [[unlikely]]
+      refuse_arm("Scheduler::hold_owned_lazily", owned, now_);
+    Slot& slot = slots_[owned];
+    slot.generation = next_generation();  // odd: live
+    const std::uint32_t flags = slot.next_free;
+    slot.action = action;
+    if ((flags & (kListed | kResolver)) != (kListed | kResolver)) [[unlikely]]
+      list_resolver(owned, resolve);
+    slot.next_free = flags | kHeld | kListed | kResolver | kLazy;
+  }
+  // Works out the time of a lazily held event now (nothing if it is not lazily held).
+  void settle_held(OwnedSlot owned) { settle_lazy(owned); }
   // Whether the run has passed the held event's place: it is before now, or now and
   // before the event running (all of now once run_until() is done).
-  bool held_passed(OwnedSlot owned) const { return passed(slots_[owned]); }
+  bool held_passed(OwnedSlot owned) const { return passed_or_over(owned); }
   // Queues the held event where arm_owned() at its hold would have put it, if it is still
   // ahead; a passed one is cancelled (it has run). Nothing if it is not held.
   void queue_held(OwnedSlot owned);
@@ -222,6 +244,10 @@ class Scheduler {
   // generation is odd. kListed: the slot is in held_ (from its first hold on).
   static constexpr std::uint32_t kHeld = 0x4000'0000u;
   static constexpr std::uint32_t kListed = 0x2000'0000u;
+  // kLazy: held by hold_owned_lazily(), its `when` not worked out yet. kResolver: the slot
+  // is in resolvers_ (from its first lazy hold on).
+  static constexpr std::uint32_t kLazy = 0x1000'0000u;
+  static constexpr std::uint32_t kResolver = 0x0800'0000u;
   struct Entry {
     Time when;
     std::uint32_t slot;
@@ -237,6 +263,16 @@ class Scheduler {
   static bool held(const Slot& slot) {
     return (slot.next_free & (kOwned | kHeld)) == (kOwned | kHeld) && slot.generation % 2 == 1;
   }
+  // A held slot's time, worked out if it is lazily held (kUnheld: it never runs).
+  Time held_when(std::uint32_t index) const;
+  // passed() for a held slot, lazily held or not (one that never runs has passed).
+  bool passed_or_over(std::uint32_t index) const {
+    const Time when = held_when(index);
+    return when == kUnheld || passed(when, slots_[index].generation);
+  }
+  // A lazily held slot's time worked out and kept (one that never runs is cancelled).
+  void settle_lazy(std::uint32_t index);
+  void list_resolver(OwnedSlot owned, Resolve resolve);
   // Queues the held event of `index`, ahead still, in its place.
   void queue_held_slot(std::uint32_t index);
   // Queues the held events due at `when` and ahead, each in its place (before a move there).
@@ -250,7 +286,7 @@ class Scheduler {
   // it takes now; no longer held.
   Generation take_order(Slot& slot, Time when) {
     slot.when = when;
-    slot.next_free &= ~kHeld;
+    slot.next_free &= ~(kHeld | kLazy);
     return slot.generation = next_generation();  // odd: live
   }
   // Whether the event of generation `a` was scheduled before that of `b`.
@@ -410,6 +446,11 @@ class Scheduler {
   // (all events of now have run).
   Generation running_ = 1;
   std::vector<std::uint32_t> held_;  // the owned slots with kListed
+  struct Resolver {
+    std::uint32_t slot;
+    Resolve resolve;
+  };
+  std::vector<Resolver> resolvers_;  // the owned slots with kResolver
   std::vector<Entry> deferred_;
   std::size_t deferred_head_ = 0;
   Time deferred_last_ = std::numeric_limits<Time>::min();  // no deferred_ entry is later
