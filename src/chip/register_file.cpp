@@ -57,7 +57,10 @@ void RegisterFile::on_change(std::function<void(std::uint8_t)> listener) {
 }
 
 void RegisterFile::on_change_first(std::function<void(std::uint8_t)> listener) {
-  change_listeners_.insert(change_listeners_.begin(), std::move(listener));
+  change_listeners_.insert(
+      change_listeners_.begin() + static_cast<std::ptrdiff_t>(first_listeners_),
+      std::move(listener));
+  ++first_listeners_;
 }
 
 void RegisterFile::reset() {

@@ -179,8 +179,9 @@ inline void SerialReceiver::pass_to_repeater(const Entry& e) {
 
 // What announce(burst, handed) does with such a burst, without asking again what the hop
 // try has found: it is after now (no past to refuse, the monitor not due now), the unit
-// runs at its rate (taken) with the repeater on, the chain is short enough, its one frame
-// decoded, the processor's answers known.
+// runs at its rate (taken), the chain is short enough, its one frame decoded, the
+// processor's answers known. The repeater is on (a hop try's read), or off (a master's
+// read from announce_or_read(), which asks the answers: Full).
 bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
   const sim::Time at = b.start;
   const Entry& last = timeline_.back();

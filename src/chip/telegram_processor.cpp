@@ -57,12 +57,6 @@ TelegramProcessor::TelegramProcessor(Chip& chip)
   interrupts_.on_clear(
       Irq::Endmk, [](void* tp) { static_cast<TelegramProcessor*>(tp)->list_.end_may_change(); },
       this);
-  interrupts_.on_clear(
-      Irq::Rend, [](void* tp) { static_cast<TelegramProcessor*>(tp)->rend_latched_ = false; },
-      this);
-  interrupts_.on_clear(
-      Irq::Rscend, [](void* tp) { static_cast<TelegramProcessor*>(tp)->rscend_latched_ = false; },
-      this);
 }
 
 // Only the scheduler is touched: the time base may be gone (it cancels its own events).
@@ -78,8 +72,6 @@ void TelegramProcessor::reset(ResetCause) {
   wants_.flag_clear = kNone;
   scheduler_.cancel_owned(tend_event_);
   tend_held_ = false;
-  rend_latched_ = false;
-  rscend_latched_ = false;
   scheduler_.cancel(rscend_event_);
   rscend_event_ = {};
   serial_.interest_changed();
@@ -94,6 +86,8 @@ void TelegramProcessor::read_fields() {
   f.flmdtadr = flmdtadr_.on(regs_);
   f.tend_latched = interrupts_.latched(Irq::Tend);
   f.endmk_latched = interrupts_.latched(Irq::Endmk);
+  f.rend_latched = interrupts_.latched(Irq::Rend);
+  f.rscend_latched = interrupts_.latched(Irq::Rscend);
 }
 
 void TelegramProcessor::set_service_channel_port(ServiceChannelPort* port) {
@@ -145,7 +139,8 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
   // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
   // Frames do not overlap and a detection comes before the next frame's start report, so
   // this is a guard, not a path the ring takes: its header is kept before the offer takes
-  // receiving_.item.
+  // receiving_.item, and receive_missed() runs after stop_receiving() (nothing it reaches
+  // asks receiving()).
   const bool lost = receiving();
   const ListItem lost_item = receiving_.item;
   // An accepted header goes straight into receiving_ (meaningful only while receiving()).
@@ -235,8 +230,8 @@ void TelegramProcessor::finish_receive(const ListItem& item, const wire::Decoded
   stop_receiving();
   // The usual telegram inline: no outcome to look at (no error, no service work).
   if (receive_.finish_plain(item, frame)) {
-    raise_unless_latched(Irq::Rend, rend_latched_);
-    if (!service_work_pending()) raise_unless_latched(Irq::Rscend, rscend_latched_);
+    raise_unless_latched(Irq::Rend, fields().rend_latched);
+    if (!service_work_pending()) raise_unless_latched(Irq::Rscend, fields().rscend_latched);
     return;
   }
   ReceivePath::Outcome outcome;

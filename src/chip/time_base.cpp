@@ -151,8 +151,8 @@ void TimeBase::on_register_change(std::uint8_t address) {
   // at its new time, so events that now share a time run in that order.
   const sim::Time changed_at = mclk_.time_of(edge);
   struct Moved {
-    sim::Scheduler::Generation asked;
-    sim::Scheduler::EventId event;  // 0: `owned` names an owned event
+    sim::Scheduler::Generation generation;  // the order they were asked for
+    sim::Scheduler::EventId event;          // 0: `owned` names an owned event
     const OwnedEvent* owned;
     std::int64_t cycle_time;
     sim::Time* when;
@@ -170,7 +170,7 @@ void TimeBase::on_register_change(std::uint8_t address) {
         scheduler_.owned_generation(owned->slot_), {}, owned, owned->cycle_time_, &owned->when_});
   }
   std::sort(moved.begin(), moved.end(),
-            [](const Moved& a, const Moved& b) { return a.asked < b.asked; });
+            [](const Moved& a, const Moved& b) { return a.generation < b.generation; });
   for (const Moved& m : moved) {
     *m.when = time_of_step(m.cycle_time);
     if (m.owned != nullptr) {

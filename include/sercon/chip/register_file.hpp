@@ -74,8 +74,9 @@ class RegisterFile {
   // Any change of a value by the chip's side or the bus calls these (e.g. interrupt
   // outputs follow INTSTAT & IEN).
   void on_change(std::function<void(std::uint8_t address)> listener);
-  // The same, called before every listener added with on_change(): for a unit that keeps
-  // register fields as data, current for whatever the other listeners run.
+  // The same, called before every listener added with on_change() (these among themselves
+  // in the order they were added): for a unit that keeps register fields as data, current
+  // for whatever the other listeners run.
   void on_change_first(std::function<void(std::uint8_t address)> listener);
 
   // Table reset values for every register (pins and variant-specific bits: see Chip).
@@ -101,6 +102,7 @@ class RegisterFile {
   std::array<std::vector<WriteHook>, kRegisterCount> write_hooks_;
   std::array<ReadHook, kRegisterCount> read_hooks_;
   std::vector<std::function<void(std::uint8_t)>> change_listeners_;
+  std::size_t first_listeners_ = 0;  // change_listeners_' first ones: on_change_first()
 };
 
 }  // namespace sercon::chip

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -154,7 +155,11 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     const FrameState& operator[](std::size_t i) const { return data()[i]; }
     FrameState& back() { return data()[size_ - 1]; }
     // The state of an entry of one frame (size() == 1): inline, without data()'s choice.
-    FrameState& only() { return inline_[0]; }
+    FrameState& only() {
+      static_assert(kInline >= 1);
+      assert(size_ == 1);
+      return inline_[0];
+    }
     const FrameState& back() const { return data()[size_ - 1]; }
     void clear() { resize(0); }
     // n new frame states (a burst taken afresh).

@@ -76,8 +76,10 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
     bool address_flag_phase = false;
     bool entmt = false;
     bool flmdtadr = false;
-    bool tend_latched = false;   // INT_TEND
-    bool endmk_latched = false;  // INT_ENDMK
+    bool tend_latched = false;    // INT_TEND
+    bool endmk_latched = false;   // INT_ENDMK
+    bool rend_latched = false;    // INT_REND
+    bool rscend_latched = false;  // INT_RSCEND
   };
   const Fields& fields() const { return fields_; }
   void read_fields();
@@ -104,11 +106,10 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
                                                     const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
-  // interrupts_.raise(irq) unless `latched` says it would change nothing; then it does.
-  void raise_unless_latched(Irq irq, bool& latched) {
-    if (latched) return;
-    interrupts_.raise(irq);
-    latched = true;
+  // interrupts_.raise(irq) unless `latched` (a field of fields()) says it would change
+  // nothing. The raise refreshes the fields, also if a listener clears the flag again.
+  void raise_unless_latched(Irq irq, bool latched) {
+    if (!latched) interrupts_.raise(irq);
   }
   // INT_RSCEND waits for service-container work: mostly none was ever started (no id).
   bool service_work_pending() const {
@@ -164,8 +165,6 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   // INT_REND / INT_RSCEND known to be latched: raised since the flag was last cleared
   // (Interrupts::on_clear), so a raise changes nothing. Mostly a host clears them now and
   // then, and every received telegram raises both.
-  bool rend_latched_ = false;
-  bool rscend_latched_ = false;
   // tend_event_ is held (Scheduler::hold_owned): INT_TEND was latched when it was armed and
   // has not been cleared since.
   bool tend_held_ = false;
