@@ -522,6 +522,12 @@ void SerialReceiver::fire_report() {
       return fire_start_of_only(back);
     }
   }
+  fire_found<kTelegram>();
+}
+
+// fire_report() of any other report: its entry found by its serial.
+template <bool kTelegram>
+void SerialReceiver::fire_found() {
   const Report r = report_;
   Entry* e = find(r.serial);
   if (e == nullptr || !e->decode || r.frame >= e->frames.size()) return plan_reports();
@@ -579,6 +585,10 @@ inline void SerialReceiver::fire_start_of_only(Entry& last) {
     if (t < scheduler_.now() || t == kNever || report_armed_) return plan_reports();
     return arm(Report{t, serial, 0, true});
   }
+  after_start(serial);
+}
+
+void SerialReceiver::after_start(std::uint64_t serial) {
   if (plan_telegram_after_start(Report{0, serial, 0, false})) return;
   plan_reports();
 }

@@ -411,11 +411,17 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   bool candidate(Entry& e, FrameState& st, std::size_t frame, bool telegram, sim::Time now,
                  sim::Time before);
   template <bool kTelegram>  // the detection; false: the start report
-  [[gnu::flatten]] void fire_report();
+  void fire_report();
+  // fire_report() but for the usual report, out of line (flattened as fire_report() was):
+  // the usual one then saves fewer registers and its lambda takes it inline.
+  template <bool kTelegram>
+  [[gnu::noinline, gnu::flatten]] void fire_found();
+  // fire_start_of_only()'s end when the entry is no longer the last one's only frame.
+  [[gnu::noinline, gnu::flatten]] void after_start(std::uint64_t serial);
   // fire_report() of the usual report, of `last`'s only frame (the last entry: a burst read
   // fires its reports before the next one comes), without find() or the frame's index.
-  inline void fire_start_of_only(Entry& last);
-  inline void fire_telegram_of_only(Entry& last);
+  [[gnu::always_inline]] inline void fire_start_of_only(Entry& last);
+  [[gnu::always_inline]] inline void fire_telegram_of_only(Entry& last);
   inline bool plan_telegram_after_start(const Report& fired);  // true: planned
   // A plan would find none; the entries before the fired one are pruned on the way.
   inline bool nothing_after_detection(const Report& fired);

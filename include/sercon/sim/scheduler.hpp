@@ -64,7 +64,8 @@ class Scheduler {
   OwnedSlot own(Action action, void* context);
   // Queues the owned event at `when`. Throws std::invalid_argument if `when` is in the
   // past, std::logic_error if the event is pending already (cancel_owned() it first).
-  void arm_owned(OwnedSlot owned, Time when) {
+  // Always inline, with insert(): a receiver's report event arms the next one without a call.
+  [[gnu::always_inline]] void arm_owned(OwnedSlot owned, Time when) {
     if (when < now_ || owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::arm_owned", owned, when);
     insert(when, owned, take_order(slots_[owned], when));
@@ -402,7 +403,7 @@ class Scheduler {
   // others only a few places behind its front (few entries are due sooner): they walk there
   // from the front, moving those few one place towards the entries that have run. An entry
   // due later goes at the back of far_, which is kept in scheduling order, not sorted.
-  void insert(Time when, std::uint32_t slot, Generation generation) {
+  [[gnu::always_inline]] void insert(Time when, std::uint32_t slot, Generation generation) {
     if (when > near_limit_) [[unlikely]]
       return far_.push_back(Entry{when, slot, generation});
     SortedRun& run = near_;
