@@ -259,7 +259,8 @@ std::size_t Scheduler::pending_count() const {
 
 Time Scheduler::held_when(std::uint32_t index) const {
   const Slot& slot = slots_[index];
-  if ((slot.next_free & kLazy) == 0) return slot.when;
+  // A cancelled slot may keep kLazy: its resolver's owner may be gone.
+  if ((slot.next_free & kLazy) == 0 || !held(slot)) return slot.when;
   for (const Resolver& r : resolvers_) {
     if (r.slot == index) return r.resolve(slot.context);
   }
@@ -279,6 +280,13 @@ void Scheduler::settle_lazy(std::uint32_t index) {
     slot.when = when;
   }
   slot.next_free &= ~kLazy;
+}
+
+bool Scheduler::resolver_is(OwnedSlot owned, Resolve resolve) const {
+  for (const Resolver& r : resolvers_) {
+    if (r.slot == owned) return r.resolve == resolve;
+  }
+  return true;  // none yet: list_resolver() lists it
 }
 
 void Scheduler::list_resolver(OwnedSlot owned, Resolve resolve) {

@@ -195,7 +195,10 @@ class TimeBase : public ChipUnit {
   // A held event's time: its step's as at_cycle_time() would have found it when it was
   // held, or Scheduler::kUnheld if the step was not ahead then, or a cycle started
   // since (which would have dropped it or found it passed: either way it never runs). The
-  // grid is the hold's: an MCLKDIV change settles the event first.
+  // grid is the hold's: an MCLKDIV change settles the event first. One case differs: a step
+  // exactly at the next cycle's start, held after that start was scheduled, would still have
+  // run at it had its flag been cleared there. The owner must cancel its held event at every
+  // cycle start (the telegram list's start() does), so the case never arises.
   sim::Time resolve_held(OwnedEvent& owned) const {
     if (owned.held_cycle_ != cycles_) return sim::Scheduler::kUnheld;
     const std::int64_t tick = tick_of(owned.cycle_time_);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -150,6 +151,7 @@ class Scheduler {
   void hold_owned_lazily(OwnedSlot owned, Action action, Resolve resolve) {
     if (owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::hold_owned_lazily", owned, now_);
+    assert(resolver_is(owned, resolve));  // a slot keeps the resolve of its first lazy hold
     Slot& slot = slots_[owned];
     slot.generation = next_generation();  // odd: live
     const std::uint32_t flags = slot.next_free;
@@ -274,6 +276,7 @@ class Scheduler {
   // A lazily held slot's time worked out and kept (one that never runs is cancelled).
   void settle_lazy(std::uint32_t index);
   void list_resolver(OwnedSlot owned, Resolve resolve);
+  bool resolver_is(OwnedSlot owned, Resolve resolve) const;  // or none listed yet
   // Queues the held event of `index`, ahead still, in its place.
   void queue_held_slot(std::uint32_t index);
   // Queues the held events due at `when` and ahead, each in its place (before a move there).
