@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <optional>
 
 #include "telegram_bench.hpp"
 
@@ -409,6 +410,89 @@ TEST_F(Cp4Ring, EndmkClearedBeforeTheEndMarkerComesAtItsTime) {
   ring.scheduler.run_until(endmk - 1);
   ASSERT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
   ring.chip(0).reg_write(kIntStat, kIntEndmk);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+  ring.scheduler.run_until(endmk);
+  EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+}
+
+// A second CP4 ring set up as the test's own: the twin whose end marker takes the ordinary
+// path (armed while INT_ENDMK is clear), to compare a held one with.
+class Cp4Twin : public Cp4Ring {
+ public:
+  Cp4Twin() { SetUp(); }
+  using Cp4Ring::first;
+  using Cp4Ring::ring;
+  using Cp4Ring::t;
+  void TestBody() override {}
+};
+
+// Steps the ring's events one by one until the master's INT_ENDMK is latched; its time, or
+// -1 if it is not latched by `limit`.
+Time step_until_endmk(Ring& ring, Time limit) {
+  while (!(ring.chip(0).reg_read(kIntStat) & kIntEndmk)) {
+    const std::optional<Time> next = ring.scheduler.next_time();
+    if (!next || *next > limit) return -1;
+    ring.scheduler.step();
+  }
+  return ring.scheduler.now();
+}
+
+// INT_ENDMK at the step out of TEND (datasheet 4.2.3) counts on the tick of the time base,
+// which MCLKDIV makes; a new MCLKDIV counts from the tick after the pending one (docs/timing.md,
+// "Cycle-time events": moved if MCLKDIV changes). Cycle 1's end marker with MCLKDIV written
+// at `y`, before its step: on the twin's ordinary path INT_ENDMK is cleared in cycle 0 after
+// its marker, so cycle 1's walk arms the marker; held, INT_ENDMK is latched since cycle 0
+// when the walk reads it and cleared right after the MCLKDIV write. The time INT_ENDMK latches, by
+// steps.
+Time endmk_after_mclkdiv_change(bool held, Time y) {
+  Cp4Twin r;
+  Chip& m = r.ring.chip(0);
+  const Time marker = cycle_time(r.first, kMasterEnd, r.t);
+  const Time cycle = kTscyc * sim::kMicrosecond;
+  if (!held) {
+    r.ring.scheduler.run_until(marker + 10 * sim::kMicrosecond);
+    EXPECT_TRUE(m.reg_read(kIntStat) & kIntEndmk);
+    m.reg_write(kIntStat, kIntEndmk);
+  }
+  r.ring.scheduler.run_until(y);
+  EXPECT_EQ(static_cast<bool>(m.reg_read(kIntStat) & kIntEndmk), held);
+  m.reg_write(kClockDiv, static_cast<std::uint16_t>(r.t.mclkst << 8 | (r.t.mclkdiv - 1) / 2));
+  if (held) {
+    m.reg_write(kIntStat, kIntEndmk);
+    EXPECT_FALSE(m.reg_read(kIntStat) & kIntEndmk);
+  }
+  return step_until_endmk(r.ring, marker + 2 * cycle);
+}
+
+// The held marker latches INT_ENDMK at the very time the twin's armed one does: with MCLKDIV
+// written well before the step (the step moves), within the tick before it (the pending
+// tick: it stays), and 1 ps before it (the change counts from the MCLK edge of the step).
+TEST_F(Cp4Ring, EndmkHeldAcrossAnMclkdivChangeComesWhereAnArmedOneWould) {
+  const Time marker = cycle_time(first, kMasterEnd, t) + cycle(1);  // MCLKDIV unchanged
+  const Time tick = t.tick_edges() * t.mclk();
+  // After the MDT, before the step; then in the tick before the step; then just before it.
+  for (const Time y : {first + cycle(1) + 100 * sim::kMicrosecond, marker - tick / 2, marker - 1}) {
+    const Time armed = endmk_after_mclkdiv_change(false, y);
+    ASSERT_GT(armed, y);
+    if (y < marker - tick) {
+      EXPECT_NE(armed, marker) << "the MCLKDIV write moved the step";
+    }
+    EXPECT_EQ(endmk_after_mclkdiv_change(true, y), armed) << "MCLKDIV written at " << y;
+  }
+}
+
+// INT_ENDMK latched all through cycle 1, so that cycle's end marker was held; cleared only
+// after cycle 2 has started, before cycle 2's walk reads its marker. Cycle 1's held marker
+// never runs (its step out of TEND belongs to a cycle that is over); cycle 2's latches
+// INT_ENDMK at its own step (datasheet 4.2.3): one cycle after the time of
+// EndmkClearedBeforeTheEndMarkerComesAtItsTime.
+TEST_F(Cp4Ring, EndmkClearedInTheNextCycleComesOnlyAtThatCyclesMarker) {
+  const Time endmk = cycle_time(first, kMasterEnd, t) + cycle(2);
+  ring.scheduler.run_until(first + cycle(2) + 10 * sim::kMicrosecond);
+  ASSERT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+  ring.chip(0).reg_write(kIntStat, kIntEndmk);
+  EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
+  ring.scheduler.run_until(endmk - 1);
   EXPECT_FALSE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
   ring.scheduler.run_until(endmk);
   EXPECT_TRUE(ring.chip(0).reg_read(kIntStat) & kIntEndmk);
