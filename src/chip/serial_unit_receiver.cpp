@@ -540,18 +540,7 @@ void SerialReceiver::fire_found() {
       const Firing firing(*this, r.serial);
       on_telegram_(ReceivedTelegram{start, st.end, r.when, e->segment.period, f});
     }
-    if (nothing_after_detection(r)) {  // what plan_reports() would find, without the walk
-      refresh_interest();
-      // Its frames are over for good once no change can cut the burst any more: nothing
-      // asks for them again (RECACT is asked from now on, past reports are never planned),
-      // so the entry stays as a burst not taken, which prunes and plans pass at once.
-      Entry& last = timeline_.back();
-      if (last.cut <= scheduler_.now()) {
-        last.decode = nullptr;
-        last.frames.clear();
-      }
-      return;
-    }
+    if (done_after_detection(r)) return;
   } else {
     st.start_done = true;
     {
@@ -603,16 +592,24 @@ inline void SerialReceiver::fire_telegram_of_only(Entry& last) {
     on_telegram_(ReceivedTelegram{st.start, st.end, report_.when, last.segment.period,
                                   last.decode->frames[0]});
   }
-  if (nothing_after_detection(Report{0, serial, 0, true})) {
-    refresh_interest();
-    Entry& now_last = timeline_.back();
-    if (now_last.cut <= scheduler_.now()) {
-      now_last.decode = nullptr;
-      now_last.frames.clear();
-    }
-    return;
-  }
+  if (done_after_detection(Report{0, serial, 0, true})) return;
   plan_reports();
+}
+
+// After the detection `fired`: true when a plan would find nothing (nothing_after_detection,
+// without the walk); then the last entry's frames are over for good once no change can cut
+// the burst any more: nothing asks for them again (RECACT is asked from now on, past reports
+// are never planned), so the entry stays as a burst not taken, which prunes and plans pass
+// at once. False: the caller plans.
+inline bool SerialReceiver::done_after_detection(const Report& fired) {
+  if (!nothing_after_detection(fired)) return false;
+  refresh_interest();
+  Entry& last = timeline_.back();
+  if (last.cut <= scheduler_.now()) {
+    last.decode = nullptr;
+    last.frames.clear();
+  }
+  return true;
 }
 
 // After the detection of a burst's only frame, mostly the last burst announced: no report of

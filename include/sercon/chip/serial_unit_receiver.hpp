@@ -425,6 +425,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   inline bool plan_telegram_after_start(const Report& fired);  // true: planned
   // A plan would find none; the entries before the fired one are pruned on the way.
   inline bool nothing_after_detection(const Report& fired);
+  // The end of both detection paths: nothing_after_detection(), and then the last entry's
+  // frames dropped once the burst can no longer be cut. False: the caller plans.
+  [[gnu::always_inline]] inline bool done_after_detection(const Report& fired);
   inline bool start_report_past(const Entry& e, const FrameState& st, sim::Time now) const;
   void plan_monitor();
   void fire_monitor();
