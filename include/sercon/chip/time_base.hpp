@@ -201,12 +201,10 @@ class TimeBase : public ChipUnit {
   // cycle start (the telegram list's start() does), so the case never arises.
   sim::Time resolve_held(OwnedEvent& owned) const {
     if (owned.held_cycle_ != cycles_) return sim::Scheduler::kUnheld;
-    const std::int64_t tick = tick_of(owned.cycle_time_);
-    if (!running_ || tick <= ticks_.ticks_before_change()) return sim::Scheduler::kUnheld;
-    const sim::Time when = mclk_.time_of(ticks_.edge_of(tick));
-    if (when <= owned.held_at_) return sim::Scheduler::kUnheld;
-    owned.when_ = when;
-    return when;
+    const std::optional<sim::Time> step = step_after(owned.cycle_time_, owned.held_at_);
+    if (!step) return sim::Scheduler::kUnheld;
+    owned.when_ = *step;
+    return *step;
   }
   void queue_held(OwnedEvent& owned) { scheduler_.queue_held(owned.slot_); }
   void cancel(CycleEvent event) { scheduler_.cancel(event); }
@@ -267,11 +265,15 @@ class TimeBase : public ChipUnit {
   // When the step out of `cycle_time` happens if it is ahead, else nullopt. A tick is ahead
   // when it comes after the last period change (earlier ones have passed) and its edge is
   // after now (after the last edge at or before now): one edge time, no tick count.
-  std::optional<sim::Time> step_ahead(std::int64_t cycle_time) const {
+  [[gnu::always_inline]] std::optional<sim::Time> step_ahead(std::int64_t cycle_time) const {
+    return step_after(cycle_time, scheduler_.now());
+  }
+  // step_ahead() as it was at `now` (a lazily held event's hold: resolve_held()).
+  std::optional<sim::Time> step_after(std::int64_t cycle_time, sim::Time now) const {
     const std::int64_t tick = tick_of(cycle_time);
     if (!running_ || tick <= ticks_.ticks_before_change()) return std::nullopt;
     const sim::Time when = mclk_.time_of(ticks_.edge_of(tick));
-    if (when <= scheduler_.now()) return std::nullopt;
+    if (when <= now) return std::nullopt;
     return when;
   }
   sim::Time time_of_step(std::int64_t cycle_time) const {
