@@ -557,13 +557,16 @@ TEST(Scheduler, AnOwnedSlotWithAnActionPerArmMovedRunsAsAtAndMoveWouldThroughRan
   expect_twins_agree(run_owned_action_twin, 15485863u);
 }
 
+// The owned event of the fixed-order tests below: notes 'd' in the order string it is given.
+void note_d(void* order) { static_cast<std::string*>(order)->push_back('d'); }
+
 // A deferred event runs where arm_owned() at its deferral would have put it: after the events
 // of its time scheduled before, before those scheduled after, also those moved to its time
 // afterwards, whether they wait near the front of the queue or far ahead of it.
 TEST(Scheduler, ADeferredEventRunsWhereArmingItThenWouldHavePutIt) {
   Scheduler s;
   std::string order;
-  const Scheduler::Action note = [](void* out) { static_cast<std::string*>(out)->push_back('d'); };
+  const Scheduler::Action note = &note_d;
   const Scheduler::OwnedSlot slot = s.own(note, &order);
   // Far ahead of the queue's front (a new scheduler queues everything far at first).
   const Time far = kMillisecond;
@@ -659,7 +662,7 @@ TEST(Scheduler, ADeferredOwnedEventRunsAsAtWouldThroughRandomSteps) {
 TEST(Scheduler, ARunInsideAnEventLeavesTheOuterRunItsOwnEnd) {
   Scheduler s;
   std::string order;
-  const Scheduler::Action note = [](void* out) { static_cast<std::string*>(out)->push_back('d'); };
+  const Scheduler::Action note = &note_d;
   const Scheduler::OwnedSlot slot = s.own(note, &order);
   s.at(10, [&] {
     order.push_back('a');
