@@ -64,8 +64,9 @@ TEST(SlaveCycle, FirstMstLoadsTheCounterAndRaisesCycst) {
   EXPECT_EQ(b.window_flags(), 0);
 }
 
-// INT_CYCST is latched at every accepted MST: once the host clears it, the next MST raises it
-// again (CycleControl keeps "latched" as data and skips the raise while it is set).
+// Register table INT_CYCST: "Cycle start: MST ... accepted (slave)", latched at every
+// accepted MST: once the host clears it, the next MST raises it again (CycleControl keeps
+// "latched" as data and skips the raise while it is set).
 TEST(SlaveCycle, CycstClearedComesAgainWithTheNextMst) {
   SlaveBench b;
   Time load = b.mst(100 * kMicrosecond);

@@ -346,8 +346,10 @@ TEST_F(Cp4Ring, TelegramInterruptsAreLatched) {
   }
 }
 
-// The processor keeps whether INT_REND and INT_RSCEND are latched (a raise then changes
-// nothing): cleared by the host, each is latched again by the next telegram received.
+// Register table 0x04 (INTSTAT) INT_REND and 0x28 INT_RSCEND: latched at every accepted
+// receive telegram until the host clears them (docs/telegram-processing.md, interrupts).
+// The processor keeps whether they are latched (a raise then changes nothing): cleared by
+// the host, each is latched again by the next telegram received.
 TEST_F(Cp4Ring, RendAndRscendClearedComeAgainWithTheNextTelegram) {
   ring.run_for(kTscyc * sim::kMicrosecond);
   for (std::size_t i = 0; i < 3; ++i) {
