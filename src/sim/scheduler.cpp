@@ -34,44 +34,58 @@ void Scheduler::refuse_arm(const char* what, OwnedSlot owned, Time when) const {
 // The storage is full: drop the entries that have run when they are at least half of
 // it, otherwise grow.
 void Scheduler::SortedRun::make_room() {
-  if (head > 0 && head * 2 >= tail) {
-    std::copy(buffer.begin() + static_cast<std::ptrdiff_t>(head),
-              buffer.begin() + static_cast<std::ptrdiff_t>(tail), buffer.begin());
-    tail -= head;
-    head = 0;
+  const std::size_t h = head_index();
+  const std::size_t t = tail_index();
+  if (h > 0 && h * 2 >= t) {
+    std::copy(head, tail, buffer.data());
+    place(0, t - h);
   } else {
     buffer.resize(std::max<std::size_t>(16, buffer.size() * 2));
-    capacity = buffer.size();
+    place(h, t);
   }
 }
 
 // After every entry at or before `when`: same-time events run in scheduling order.
 void Scheduler::SortedRun::insert(const Entry& entry) {
+  std::size_t h = head_index();
+  std::size_t t = tail_index();
+  insert_indexed(entry, h, t);
+  place(h, t);
+}
+
+// insert() on the run buffer[h, t), which it updates (make_room() sees it placed).
+void Scheduler::SortedRun::insert_indexed(const Entry& entry, std::size_t& h, std::size_t& t) {
+  const auto make_room = [&] {
+    place(h, t);
+    this->make_room();
+    h = head_index();
+    t = tail_index();
+  };
   const Time when = entry.when;
-  if (head == tail) {
-    head = tail = 0;
-  } else if (when < buffer[tail - 1].when) {
+  if (h == t) {
+    h = t = 0;
+  } else if (when < buffer[t - 1].when) {
     // A few places behind the front: walk there as Scheduler::insert does, once there is
     // room before the front. Further in, a binary search.
-    if (tail - head <= kWalk || when < buffer[head + kWalk].when) {
-      if (head == 0) {  // room for this entry and the next few late-comers
-        // With head 0, make_room() grows; more than once if kWalk outgrows a doubling.
-        while (tail + kWalk > buffer.size()) make_room();
-        std::copy_backward(buffer.data(), buffer.data() + tail, buffer.data() + tail + kWalk);
-        head += kWalk;
-        tail += kWalk;
+    if (t - h <= kWalk || when < buffer[h + kWalk].when) {
+      if (h == 0) {  // room for this entry and the next few late-comers
+        // With h 0, make_room() grows; more than once if kWalk outgrows a doubling.
+        while (t + kWalk > buffer.size()) make_room();
+        std::copy_backward(buffer.data(), buffer.data() + t, buffer.data() + t + kWalk);
+        h += kWalk;
+        t += kWalk;
       }
-      Entry* at = buffer.data() + head;
+      Entry* at = buffer.data() + h;
       for (; at->when <= when; ++at) at[-1] = *at;
       at[-1] = entry;
-      --head;
+      --h;
       return;
     }
-    Entry* const first = buffer.data() + head;
-    Entry* const last = buffer.data() + tail;
+    Entry* const first = buffer.data() + h;
+    Entry* const last = buffer.data() + t;
     // Branch-free upper bound: the first entry later than `when` (one exists).
     Entry* base = first;
-    for (std::size_t n = tail - head; n > 1;) {
+    for (std::size_t n = t - h; n > 1;) {
       const std::size_t half = n / 2;
       base = base[half].when <= when ? base + half : base;
       n -= half;
@@ -79,42 +93,42 @@ void Scheduler::SortedRun::insert(const Entry& entry) {
     Entry* const at = base + (base->when <= when);
     // Move the shorter side: the entries before `at` one place towards those that have
     // run, or those from `at` on one place back.
-    if (head > 0 && at - first <= last - at) {
+    if (h > 0 && at - first <= last - at) {
       std::copy(first, at, first - 1);
       at[-1] = entry;
-      --head;
+      --h;
       return;
     }
-    if (tail == buffer.size()) {
+    if (t == buffer.size()) {
       const std::size_t offset = static_cast<std::size_t>(at - first);
       make_room();
-      Entry* const moved = buffer.data() + head + offset;
-      std::copy_backward(moved, buffer.data() + tail, buffer.data() + tail + 1);
+      Entry* const moved = buffer.data() + h + offset;
+      std::copy_backward(moved, buffer.data() + t, buffer.data() + t + 1);
       *moved = entry;
     } else {
       std::copy_backward(at, last, last + 1);
       *at = entry;
     }
-    ++tail;
+    ++t;
     return;
   }
-  if (tail == buffer.size()) make_room();
-  buffer[tail++] = entry;
+  if (t == buffer.size()) make_room();
+  buffer[t++] = entry;
 }
 
 // Before the first entry of its time scheduled after it (generations tell: the entries of
 // a time scheduled before a deferred event come before those scheduled after it), else
 // after the entries of its time.
 void Scheduler::SortedRun::insert_deferred(const Entry& entry) {
-  Entry* const last = buffer.data() + tail;
-  Entry* at = std::lower_bound(buffer.data() + head, last, entry.when,
-                               [](const Entry& e, Time t) { return e.when < t; });
+  Entry* const last = tail;
+  Entry* at =
+      std::lower_bound(head, last, entry.when, [](const Entry& e, Time t) { return e.when < t; });
   while (at != last && at->when == entry.when && earlier(at->generation, entry.generation)) ++at;
-  const std::size_t offset = static_cast<std::size_t>(at - (buffer.data() + head));
-  if (tail == buffer.size()) make_room();
-  Entry* const place = buffer.data() + head + offset;
-  std::copy_backward(place, buffer.data() + tail, buffer.data() + tail + 1);
-  *place = entry;
+  const std::ptrdiff_t offset = at - head;
+  if (tail == end) make_room();
+  Entry* const to = head + offset;
+  std::copy_backward(to, tail, tail + 1);
+  *to = entry;
   ++tail;
 }
 
@@ -130,9 +144,8 @@ void Scheduler::LaterEntries::insert_deferred(const Entry& entry) {
 // The live entry: a cancelled event's entry may still sit at the same time with the same
 // slot (reused since), told apart by its generation.
 void Scheduler::SortedRun::remove(Time when, std::uint32_t slot, Generation generation) {
-  Entry* const last = buffer.data() + tail;
-  Entry* at = std::lower_bound(buffer.data() + head, last, when,
-                               [](const Entry& e, Time t) { return e.when < t; });
+  Entry* const last = tail;
+  Entry* at = std::lower_bound(head, last, when, [](const Entry& e, Time t) { return e.when < t; });
   while (at->slot != slot || at->generation != generation) ++at;
   std::copy(at + 1, last, at);
   --tail;
@@ -172,7 +185,7 @@ void Scheduler::sort_near(std::size_t sorted, std::size_t n) {
     }
     std::copy(first + run_end, first + n, merged);  // the runs still to merge
     near_.buffer.swap(scratch_);
-    near_.capacity = near_.buffer.size();
+    near_.place(0, n);
     first = near_.buffer.data();
     sorted = run_end;
   }
@@ -188,11 +201,7 @@ void Scheduler::refill() {
   near_limit_ = earliest > std::numeric_limits<Time>::max() - (kHorizon - 1)
                     ? std::numeric_limits<Time>::max()
                     : earliest + (kHorizon - 1);
-  near_.head = near_.tail = 0;
-  if (near_.buffer.size() < later.size()) {
-    near_.buffer.resize(later.size());
-    near_.capacity = later.size();
-  }
+  if (near_.buffer.size() < later.size()) near_.buffer.resize(later.size());
   // The live entries up to the limit to near_, the others stay, both in order; then near_
   // sorted by time, stably (mostly they come in order already).
   Entry* const first = near_.buffer.data();
@@ -212,9 +221,9 @@ void Scheduler::refill() {
   }
   later.erase(stay, later.end());
   far_.earliest = stays_earliest;
-  near_.tail = static_cast<std::size_t>(to - first);
-  if (in_order_end != nullptr)
-    sort_near(static_cast<std::size_t>(in_order_end - first), near_.tail);
+  const auto n = static_cast<std::size_t>(to - first);
+  near_.place(0, n);
+  if (in_order_end != nullptr) sort_near(static_cast<std::size_t>(in_order_end - first), n);
 }
 
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
@@ -506,7 +515,7 @@ void Scheduler::run_until(Time until) {
   until_ = until;
   set_stop();
   for (;;) {
-    const std::size_t head = near_.head;
+    Entry* const head = near_.head;
     if (head == near_.tail) {
       if (far_.empty()) {
         if (deferred_waiting() && queue_deferred(until, until)) continue;
@@ -515,7 +524,7 @@ void Scheduler::run_until(Time until) {
       refill();
       continue;
     }
-    const Entry& entry = near_.buffer[head];
+    const Entry& entry = *head;
     const std::uint32_t index = entry.slot;
     Slot& slot = slots_[index];
     if (slot.generation != entry.generation) {  // cancelled

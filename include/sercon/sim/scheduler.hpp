@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -80,9 +81,9 @@ class Scheduler {
       refuse_arm("Scheduler::arm_owned_now", owned, now_);
     const Generation generation = take_order(slots_[owned], now_);
     SortedRun& run = near_;
-    if (run.head > 0 && now_ <= near_limit_ &&
-        (run.head == run.tail || run.buffer[run.head].when > now_)) {
-      run.buffer[--run.head] = Entry{now_, owned, generation};
+    if (run.head != run.buffer.data() && now_ <= near_limit_ &&
+        (run.head == run.tail || run.head->when > now_)) {
+      *--run.head = Entry{now_, owned, generation};
       return;
     }
     insert(now_, owned, generation);
@@ -323,22 +324,32 @@ class Scheduler {
     const Slot& slot = slots_[id.slot];
     return slot.generation == id.generation ? &slot : nullptr;
   }
-  // A run of entries sorted by `when`, the earliest first: buffer[head, tail); the
-  // buffer is only storage (its size is the capacity). With a couple of dozen entries a
-  // sorted array beats a heap: the front is taken in O(1), and a new entry is placed by
-  // binary search and moves the shorter side.
+  // A run of entries sorted by `when`, the earliest first: [head, tail) in `buffer`, which
+  // is only storage (its size is the capacity). With a couple of dozen entries a sorted
+  // array beats a heap: the front is taken in O(1), and a new entry is placed by binary
+  // search and moves the shorter side. Pointers, not indices: the run loop and the inline
+  // insert take an entry without scaling an index (a few instructions an event).
   struct SortedRun {
     std::vector<Entry> buffer;
-    std::size_t head = 0;
-    std::size_t tail = 0;
-    // buffer.size(), kept for the inline insert (a vector's size is a division by 24).
-    std::size_t capacity = 0;
+    Entry* head = nullptr;
+    Entry* tail = nullptr;
+    Entry* end = nullptr;  // buffer.data() + buffer.size()
 
     // insert() walks to an entry's place from the front when it goes at most this far in.
     static constexpr std::size_t kWalk = 8;
 
     bool empty() const { return head == tail; }
+    std::size_t head_index() const { return static_cast<std::size_t>(head - buffer.data()); }
+    std::size_t tail_index() const { return static_cast<std::size_t>(tail - buffer.data()); }
+    // The run is buffer[h, t) (after the buffer changed, or to set it anew).
+    void place(std::size_t h, std::size_t t) {
+      Entry* const data = buffer.data();
+      head = data + h;
+      tail = data + t;
+      end = data + buffer.size();
+    }
     void insert(const Entry& entry);
+    void insert_indexed(const Entry& entry, std::size_t& head, std::size_t& tail);
     // A deferred event's entry: after the entries of its time scheduled before it.
     void insert_deferred(const Entry& entry);
     void remove(Time when, std::uint32_t slot, Generation generation);
@@ -372,7 +383,7 @@ class Scheduler {
     for (;;) {
       const Entry* first = nullptr;
       for (; near_.head != near_.tail; ++near_.head) {
-        const Entry& entry = near_.buffer[near_.head];
+        const Entry& entry = *near_.head;
         if (slots_[entry.slot].generation == entry.generation) {
           first = &entry;
           break;
@@ -417,15 +428,15 @@ class Scheduler {
     if (when > near_limit_) [[unlikely]]
       return far_.push_back(Entry{when, slot, generation});
     SortedRun& run = near_;
-    Entry* const data = run.buffer.data();
-    if (run.tail == run.head || when >= data[run.tail - 1].when) {
-      if (run.tail < run.capacity) {
-        data[run.tail++] = Entry{when, slot, generation};
+    if (run.tail == run.head || when >= run.tail[-1].when) {
+      if (run.tail != run.end) {
+        *run.tail++ = Entry{when, slot, generation};
         return;
       }
-    } else if (run.head > 0 && (run.tail - run.head <= SortedRun::kWalk ||
-                                when < data[run.head + SortedRun::kWalk].when)) {
-      Entry* at = data + run.head;
+    } else if (run.head != run.buffer.data() &&
+               (run.tail - run.head <= static_cast<std::ptrdiff_t>(SortedRun::kWalk) ||
+                when < run.head[SortedRun::kWalk].when)) {
+      Entry* at = run.head;
       for (; at->when <= when; ++at) at[-1] = *at;
       at[-1] = Entry{when, slot, generation};
       --run.head;
