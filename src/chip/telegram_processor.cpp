@@ -136,13 +136,22 @@ void TelegramProcessor::on_telegram_start(sim::Time start, std::uint8_t address)
 }
 
 void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
-  // Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
-  // Frames do not overlap and a detection comes before the next frame's start report, so
-  // this is a guard, not a path the ring takes: its header is kept before the offer takes
-  // receiving_.item, and receive_missed() runs after stop_receiving() (nothing it reaches
-  // asks receiving()).
-  const bool lost = receiving();
+  if (receiving()) [[unlikely]]
+    return offer_while_receiving(start, address);
+  offer(start, address, nullptr);
+}
+
+// Never detected: lost, as a telegram missed in its window (RERR, NERR, INT_RERR; §10).
+// Frames do not overlap and a detection comes before the next frame's start report, so
+// this is a guard, not a path the ring takes: its header is kept before the offer takes
+// receiving_.item, and receive_missed() runs after stop_receiving() (nothing it reaches
+// asks receiving()).
+void TelegramProcessor::offer_while_receiving(sim::Time start, std::uint8_t address) {
   const ListItem lost_item = receiving_.item;
+  offer(start, address, &lost_item);
+}
+
+void TelegramProcessor::offer(sim::Time start, std::uint8_t address, const ListItem* lost_item) {
   // An accepted header goes straight into receiving_ (meaningful only while receiving()).
   ListItem& item = receiving_.item;
   const TelegramList::Match match = list_.offer(start, address, item);
@@ -166,9 +175,9 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address) {
     flmdtadr_.set(regs_, true);
   }
   try {
-    if (lost) [[unlikely]] {
+    if (lost_item != nullptr) [[unlikely]] {
       stop_receiving();
-      receive_missed(lost_item);
+      receive_missed(*lost_item);
     }
     receiving_.val_cleared = false;
     receiving_.flag_set = flag_set;

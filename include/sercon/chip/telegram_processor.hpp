@@ -101,6 +101,12 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   // telegram's start and its detection are one call each from the serial unit
   // (finish_receive() a call of its own cost about 14 a telegram).
   inline void offer(sim::Time start, std::uint8_t address);
+  // A start report while a telegram is still being received (a guard): the offer with that
+  // telegram's header, missed if the new one is accepted. Out of line: the usual offer keeps
+  // no copy of it.
+  [[gnu::noinline]] void offer_while_receiving(sim::Time start, std::uint8_t address);
+  // `lost_item`: the header of a telegram never detected (nullptr: none).
+  inline void offer(sim::Time start, std::uint8_t address, const ListItem* lost_item);
   void withdraw_mst();
   // `item`: the header receiving_ holds (stop_receiving() leaves it as it is).
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,

@@ -70,6 +70,18 @@ class ReceivePath {
         static_cast<std::uint16_t>(std::min(pos + telegram::container_len(head), words) - first);
     if (data + count > size) return false;
     const std::uint8_t* const bytes = frame.data.data() + 2 * first;
+    // Word 0 and the marks before the data: a byte copy may alias anything, and what they
+    // need would be loaded again after it (pin changes are told after the event).
+    const bool achk = item.has(telegram::kAchk);
+    const std::uint8_t address = frame.address;
+    ram_.update_and_touch_run(
+        item.address,
+        [achk, address](std::uint16_t word0) {
+          auto next = static_cast<std::uint16_t>((word0 & ~telegram::kRerr) | telegram::kVal);
+          if (!achk) next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | address);
+          return next;
+        },
+        static_cast<std::uint16_t>(control), telegram::kReceiveContainerWords + count);
     switch (count) {  // mostly a few words: no library call
       case 3:
         std::memcpy(ram + data + 2, bytes + 4, 2);
@@ -85,16 +97,6 @@ class ReceivePath {
       default:
         std::memcpy(ram + data, bytes, 2 * count);
     }
-    const bool achk = item.has(telegram::kAchk);
-    const std::uint8_t address = frame.address;
-    ram_.update_and_touch_run(
-        item.address,
-        [achk, address](std::uint16_t word0) {
-          auto next = static_cast<std::uint16_t>((word0 & ~telegram::kRerr) | telegram::kVal);
-          if (!achk) next = static_cast<std::uint16_t>((next & ~telegram::kAdrMask) | address);
-          return next;
-        },
-        static_cast<std::uint16_t>(control), telegram::kReceiveContainerWords + count);
     return true;
   }
   // The telegram has been detected (ended, or cut off by an error).
