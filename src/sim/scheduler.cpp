@@ -231,7 +231,8 @@ Scheduler::EventId Scheduler::at(Time when, Callback callback) {
   const std::uint32_t index = free_slot_index();
   Slot& slot = slots_[index];
   slot.action = nullptr;
-  slot.callback = std::move(callback);
+  if (callbacks_.size() <= index) callbacks_.resize(slots_.size());
+  callbacks_[index] = std::move(callback);
   return take_slot(index, when);
 }
 
@@ -460,7 +461,7 @@ void Scheduler::set_stop() {
 }
 
 void Scheduler::release(std::uint32_t index) {
-  slots_[index].callback = nullptr;  // release what it captured now
+  callbacks_[index] = nullptr;  // release what it captured now
   free_slot(index);
 }
 
@@ -487,9 +488,8 @@ inline void Scheduler::run(const Entry& entry) {
 }
 
 void Scheduler::run_callback(std::uint32_t index) {
-  Slot& slot = slots_[index];
-  Callback callback = std::move(slot.callback);
-  slot.callback = nullptr;
+  Callback callback = std::move(callbacks_[index]);
+  callbacks_[index] = nullptr;
   free_slot(index);
   callback();
 }
