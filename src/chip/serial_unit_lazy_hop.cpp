@@ -88,7 +88,25 @@ void SerialReceiver::refresh_hop_period() {
   hop_by_sclk_ = repeater.by_sclk();
   hop_due_ = SerialUnit::kRepeaterDelayBits * hop_period_ + hop_sclk_ - 1;
   hop_lag_ = report_lag(hop_period_);
+  refresh_report_grid();
   refresh_unrepeated_reads();
+}
+
+void SerialReceiver::refresh_report_grid() {
+  const sim::Time bit = unit_.bit_period();
+  const sim::Time mclk = mclk_.period();
+  const sim::Time half_bits = bit > 0 ? receiver_detail::burst_half_bits(bit) : 0;
+  const auto exact_limit = static_cast<sim::Time>(mclk_.exact_limit());  // below 2^63
+  if (bit <= 0 || exact_limit <= half_bits) {
+    grid_ = ReportGrid{};
+    return;
+  }
+  grid_ = ReportGrid{bit,
+                     exact_limit - half_bits,
+                     half_bits + mclk - 1,
+                     mclk,
+                     sim::Reciprocal(static_cast<std::uint64_t>(mclk)),
+                     bit % mclk == 0};
 }
 
 // A burst at its rate after now, of one frame, at such a node: read() takes it as

@@ -298,11 +298,18 @@ inline void SerialReceiver::reports_of(Entry& e, std::size_t i) const {
   FrameState& st = e.frames[i];
   const sim::Time since = e.segment.since, period = e.segment.period;
   const std::size_t address_end = e.decode->address_end[i];
+  const std::size_t end_bit = e.decode->frames[i].end_bit;
   const sim::Time address_in = since + static_cast<sim::Time>(address_end) * period;
   st.telegram_report = pipeline(st.end, period);
-  st.start_report = address_end > e.decode->frames[i].end_bit || address_in > e.cut
-                        ? kNever  // no whole address
-                        : pipeline(address_in, period);
+  if (address_end > end_bit || address_in > e.cut) {
+    st.start_report = kNever;  // no whole address
+  } else if (const sim::Time end = since + static_cast<sim::Time>(end_bit) * period;
+             grid_.shifts && period == grid_.period && st.end == end && end <= grid_.limit) {
+    // Not cut: the address came a whole number of bits before the end (grid_).
+    st.start_report = st.telegram_report - (end - address_in);
+  } else {
+    st.start_report = pipeline(address_in, period);
+  }
   st.reports_known = st.telegram_known = true;
 }
 

@@ -46,6 +46,9 @@ class MclkGrid {
     if (exact_few(t, n)) return static_cast<sim::Time>(exact_nth_edge(t, n) * den_);
     return time_of(first_at_or_after(t) + n);
   }
+  // On an exact grid, nth_edge_after(t, n) is (ceil(t / period()) + n) * period() for
+  // 0 < t <= exact_limit() and 0 <= n <= kFewEdges; 0 for other grids.
+  std::uint64_t exact_limit() const { return exact_limit_; }
   // The same edge's index and time (a slave's MST load edge: its cycle starts from it).
   struct EdgeAt {
     Edge edge;

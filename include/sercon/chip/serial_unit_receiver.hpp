@@ -377,6 +377,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     return !st.reports_known && st.end + report_lag(e.segment.period) < now;
   }
   sim::Time pipeline(sim::Time t, sim::Time period) const;  // MCLK edge after t + 5.5 bit + 3
+  void refresh_report_grid();                               // grid_, with hop_period_
   sim::Time report_lag(sim::Time period) const;             // bound on pipeline(t, period) - t
   void plan_reports();
   [[gnu::noinline]] void plan_by_walk(sim::Time now);  // plan_reports() but for its shortcut
@@ -488,6 +489,21 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   // at every hop).
   sim::Time hop_period_ = 0;
   sim::Time hop_lag_ = 0;  // report_lag(hop_period_): a lazy burst's reports_over
+  // pipeline() at the unit's rate on an exact MCLK grid (the usual case), from values kept
+  // with hop_period_ instead of MclkGrid's general path: for 0 <= t <= limit, the
+  // kDetectionEdges-th MCLK edge after the first at or after t + 5.5 bits is
+  // (floor((t + offset) / MCLK) + kDetectionEdges) * MCLK. When the MCLK period divides the
+  // bit period (`shifts`), a time a whole number of bits later has its edge as many bits
+  // later: a frame's start report comes that many bits before its detection (reports_of).
+  struct ReportGrid {
+    sim::Time period = 0;  // the bit period it holds for; 0: none
+    sim::Time limit = 0;
+    sim::Time offset = 0;  // 5.5 bits + an MCLK period - 1
+    sim::Time mclk = 1;
+    sim::Reciprocal by_mclk{1};
+    bool shifts = false;
+  };
+  ReportGrid grid_;
   // The repeater's forward_time() for a hop, from these (set with hop_period_).
   sim::Time hop_due_ = 0;
   sim::Time hop_sclk_ = 1;

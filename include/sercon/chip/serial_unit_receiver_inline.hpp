@@ -38,6 +38,13 @@ inline sim::Time SerialReceiver::report_lag(sim::Time period) const {
 }
 
 inline sim::Time SerialReceiver::pipeline(sim::Time t, sim::Time period) const {
+  // The usual: at the unit's rate on an exact grid (grid_), its edge by one multiply.
+  if (period == grid_.period &&
+      static_cast<std::uint64_t>(t) <= static_cast<std::uint64_t>(grid_.limit)) {
+    const std::uint64_t first = grid_.by_mclk.divide(static_cast<std::uint64_t>(t + grid_.offset));
+    return static_cast<sim::Time>((first + static_cast<std::uint64_t>(kDetectionEdges)) *
+                                  static_cast<std::uint64_t>(grid_.mclk));
+  }
   const sim::Time half_bits = receiver_detail::burst_half_bits(period);
   // kDetectionEdges MCLK edges after the first one at or after t + 5.5 bits (facts §5 t_start).
   return mclk_.nth_edge_after(t + half_bits, kDetectionEdges);
