@@ -185,8 +185,10 @@ inline void SerialReceiver::pass_to_repeater(const Entry& e) {
 bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
   const sim::Time at = b.start;
   const Entry& last = timeline_.back();
-  const bool changed =
-      (last.segment.since >= at || (last.segment.is_burst && at < last.cut)) && supersede(at);
+  // Nothing superseded or cut: `last` stays, before the new entry (prune() keeps two).
+  const bool quiet = last.segment.since < at && !(last.segment.is_burst && at < last.cut);
+  const bool changed = !quiet && supersede(at);
+  const bool after_good = quiet && good(last.segment);  // the monitor hears nothing
   prune();
   if (timeline_.size() >= kMaxTimeline) refuse_more(scheduler_.now());
   Entry& e = timeline_.emplace_back(b, next_serial_++);
@@ -202,8 +204,7 @@ bool SerialReceiver::read(const LineBurst& b, HopTry wanted, Handed& handed) {
   // it, nor RECACTN (replan() would do nothing), so nothing outside the node has run since
   // the hop try: the repeater is on at this rate, the chain short enough (pass_handing()
   // need not ask), and the burst leaves when a hop's would (at a master, nothing leaves).
-  if (changed || !holds_more_than(1) || !good((timeline_.end() - 2)->segment) || !recactn_.idle())
-      [[unlikely]]
+  if (!after_good || !recactn_.idle()) [[unlikely]]
     return read_told(e, changed, handed);
   if (unrepeated_reads_) return false;  // the repeater is off: nothing goes on (pass_handing())
   ++chain_depth;
