@@ -243,6 +243,11 @@ void TelegramProcessor::finish_receive(const ListItem& item, const wire::Decoded
     if (!service_work_pending()) raise_unless_latched(Irq::Rscend, fields().rscend_latched);
     return;
   }
+  finish_receive_general(item, frame);
+}
+
+void TelegramProcessor::finish_receive_general(const ListItem& item,
+                                               const wire::DecodedFrame& frame) {
   ReceivePath::Outcome outcome;
   try {
     outcome = receive_.finish(item, frame, port());

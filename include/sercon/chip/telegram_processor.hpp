@@ -107,19 +107,25 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   [[gnu::noinline]] void offer_while_receiving(sim::Time start, std::uint8_t address);
   // `lost_item`: the header of a telegram never detected (nullptr: none).
   inline void offer(sim::Time start, std::uint8_t address, const ListItem* lost_item);
-  void withdraw_mst();
+  // Out of line: on_telegram is flattened, and an MST taken by a header is rare.
+  [[gnu::noinline]] void withdraw_mst();
   // `item`: the header receiving_ holds (stop_receiving() leaves it as it is).
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
                                                     const wire::DecodedFrame& frame);
+  // Any other telegram (ReceivePath::finish). Out of line: on_telegram is flattened, and
+  // this path's interrupts and list faults would crowd the usual one.
+  [[gnu::noinline]] void finish_receive_general(const ListItem& item,
+                                                const wire::DecodedFrame& frame);
   void after_service_work(sim::Time work);
   // interrupts_.raise(irq) unless `latched` (a field of fields()) says it would change
   // nothing. The raise refreshes the fields, also if a listener clears the flag again.
   void raise_unless_latched(Irq irq, bool latched) {
     if (!latched) interrupts_.raise(irq);
   }
-  // INT_RSCEND waits for service-container work: mostly none was ever started (no id).
+  // INT_RSCEND waits for service-container work: mostly none was ever started (no id: a
+  // scheduled event's generation is odd, never 0).
   bool service_work_pending() const {
-    return rscend_event_ != sim::Scheduler::EventId{} && scheduler_.pending(rscend_event_);
+    return rscend_event_.generation != 0 && scheduler_.pending(rscend_event_);
   }
   // Scheduler actions (function + context: no std::function per telegram).
   static void transmission_ended(void* processor);
