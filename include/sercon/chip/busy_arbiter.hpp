@@ -33,7 +33,7 @@ class BusyArbiter {
     void mark(std::uint16_t word) const {
       const sim::Time now = scheduler_->now();
       used_[word] = now;
-      if (word == arbiter_->host_word_) arbiter_->internal_meets_host(now);
+      if (meets_host(now) && word == arbiter_->host_word_) arbiter_->internal_meets_host(now);
     }
     void mark_run(std::uint16_t first, std::size_t count) const {
       mark_run(first, count, [](std::size_t) {});
@@ -46,7 +46,8 @@ class BusyArbiter {
     template <typename Each>
     void mark_run(std::uint16_t first, std::size_t count, Each each) const {
       const sim::Time now = scheduler_->now();
-      if (arbiter_->host_word_ - std::uint32_t{first} < count) arbiter_->internal_meets_host(now);
+      if (meets_host(now) && arbiter_->host_word_ - std::uint32_t{first} < count)
+        arbiter_->internal_meets_host(now);
       sim::Time* used = used_ + first;
       const auto word = [&](std::size_t i) {
         used[i] = now;
@@ -78,8 +79,10 @@ class BusyArbiter {
     // receive container's control word, POS and 3 data words).
     void mark_word_and_run(std::uint16_t word, std::uint16_t first, std::size_t count) const {
       const sim::Time now = scheduler_->now();
-      const std::uint32_t host = arbiter_->host_word_;
-      if (host == word || host - std::uint32_t{first} < count) arbiter_->internal_meets_host(now);
+      if (meets_host(now)) {
+        const std::uint32_t host = arbiter_->host_word_;
+        if (host == word || host - std::uint32_t{first} < count) arbiter_->internal_meets_host(now);
+      }
       used_[word] = now;
       sim::Time* used = used_ + first;
       switch (count) {
@@ -107,6 +110,10 @@ class BusyArbiter {
 
    private:
     friend class BusyArbiter;
+    // The µP's last access was at this instant: only then can an internal access now meet
+    // it (internal_meets_host). Asked first: mostly it was long ago, and the word need not
+    // be compared.
+    bool meets_host(sim::Time now) const { return arbiter_->host_time_ == now; }
     Marks(BusyArbiter* arbiter, sim::Time* used, const sim::Scheduler* scheduler)
         : arbiter_(arbiter), used_(used), scheduler_(scheduler) {}
 
