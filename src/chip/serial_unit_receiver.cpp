@@ -610,12 +610,13 @@ inline void SerialReceiver::fire_telegram_of_only(Entry& last) {
 // are never planned), so the entry stays as a burst not taken, which prunes and plans pass
 // at once. False: the caller plans.
 inline bool SerialReceiver::done_after_detection(const Report& fired) {
-  if (!nothing_after_detection(fired)) return false;
-  refresh_interest();
-  Entry& last = timeline_.back();
-  if (last.cut <= scheduler_.now()) {
-    last.decode = nullptr;
-    last.frames.clear();
+  refresh_interest();  // first: fewer values kept across the walk's calls (a plan asks again)
+  const sim::Time now = scheduler_.now();
+  Entry* const last = nothing_after_detection(fired, now);
+  if (last == nullptr) return false;
+  if (last->cut <= now) {
+    last->decode = nullptr;
+    last->frames.clear();
   }
   return true;
 }
@@ -627,18 +628,18 @@ inline bool SerialReceiver::done_after_detection(const Report& fired) {
 // force, and one with no report to come, none planned (report_armed_) and none firing (the
 // handler has returned) is done with. The next read's prune and an own telegram's settle
 // then find the fired entry alone.
-inline bool SerialReceiver::nothing_after_detection(const Report& fired) {
-  if (!lazy_.empty() || report_armed_ || fired.frame != 0) return false;
-  const Entry& last = timeline_.back();
-  if (last.serial != fired.serial || !last.decode || last.frames.size() != 1) return false;
-  const sim::Time now = scheduler_.now();
+inline SerialReceiver::Entry* SerialReceiver::nothing_after_detection(const Report& fired,
+                                                                      sim::Time now) {
+  if (!lazy_.empty() || report_armed_ || fired.frame != 0) return nullptr;
+  Entry& last = timeline_.back();
+  if (last.serial != fired.serial || !last.decode || last.frames.size() != 1) return nullptr;
   const FrameState& st = last.frames[0];
-  if (!st.end_done || (!st.start_done && !start_report_past(last, st, now))) return false;
+  if (!st.end_done || (!st.start_done && !start_report_past(last, st, now))) return nullptr;
   while (&timeline_.front() != &last) {
-    if (!all_past(timeline_.front(), now)) return false;  // no frames: not taken (past)
-    timeline_.pop_front();
+    if (!all_past(timeline_.front(), now)) return nullptr;  // no frames: not taken (past)
+    timeline_.pop_front();                                  // the others stay where they are
   }
-  return true;
+  return &last;
 }
 
 // At the detection of e's only frame (now): its start report is past, or never comes (a

@@ -424,8 +424,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[gnu::always_inline]] inline void fire_start_of_only(Entry& last);
   [[gnu::always_inline]] inline void fire_telegram_of_only(Entry& last);
   inline bool plan_telegram_after_start(const Report& fired);  // true: planned
-  // A plan would find none; the entries before the fired one are pruned on the way.
-  inline bool nothing_after_detection(const Report& fired);
+  // A plan would find none (the last entry; else null); the entries before the fired one are
+  // pruned on the way.
+  inline Entry* nothing_after_detection(const Report& fired, sim::Time now);
   // The end of both detection paths: nothing_after_detection(), and then the last entry's
   // frames dropped once the burst can no longer be cut. False: the caller plans.
   [[gnu::always_inline]] inline bool done_after_detection(const Report& fired);
