@@ -168,13 +168,19 @@ void CycleControl::mst_detected(sim::Time when) {
   const MclkGrid::EdgeAt load = time_base_.mclk().nth_edge_at(when, kMstSyncEdges);
   if (load.time < scheduler_.now()) refuse_past_load(when, load.time);
   if (!running_) return;
-  // Mostly the MST is heard of at its load edge (TelegramProcessor::on_mst): now.
-  if (!scheduler_.owned_pending(mst_event_)) {
+  // Mostly the MST is heard of at its load edge (TelegramProcessor::on_mst): now. The other
+  // cases out of line: inline, their queue work made this path save registers.
+  if (!scheduler_.owned_pending(mst_event_)) [[likely]] {
     mst_load_edge_ = load.edge;
-    if (load.time == scheduler_.now()) return scheduler_.arm_owned_now(mst_event_);
-    return scheduler_.arm_owned(mst_event_, load.time);
+    if (load.time == scheduler_.now()) [[likely]]
+      return scheduler_.arm_owned_now(mst_event_);
   }
-  recognise_at(load.time, &CycleControl::slave_mst_action, false);
+  mst_later(load.time);
+}
+
+void CycleControl::mst_later(sim::Time load) {
+  if (!scheduler_.owned_pending(mst_event_)) return scheduler_.arm_owned(mst_event_, load);
+  recognise_at(load, &CycleControl::slave_mst_action, false);
 }
 
 void CycleControl::refuse_past_load(sim::Time when, sim::Time load) const {

@@ -122,7 +122,25 @@ std::optional<sim::Time> TimeBase::time_of_cycle_time(std::int64_t cycle_time) c
 TimeBase::CycleListenerId TimeBase::on_cycle_start(void* context, CycleListener listener) {
   if (starting_) throw std::logic_error("TimeBase::on_cycle_start: called during a cycle start");
   cycle_listeners_.push_back(CycleStartListener{listener, context});
-  return cycle_listeners_.size() - 1;
+  const CycleListenerId id = cycle_listeners_.size() - 1;
+  set_cycle_listener_idle(id, false);
+  return id;
+}
+
+void TimeBase::set_cycle_listener_idle(CycleListenerId id, bool idle) {
+  cycle_listeners_[id].idle = idle;
+  if (!idle) {
+    if (active_.first == active_.end) {
+      active_.first = id;
+      active_.end = id + 1;
+    } else {
+      active_.first = std::min(active_.first, id);
+      active_.end = std::max(active_.end, id + 1);
+    }
+    return;
+  }
+  while (active_.first != active_.end && cycle_listeners_[active_.first].idle) ++active_.first;
+  while (active_.end != active_.first && cycle_listeners_[active_.end - 1].idle) --active_.end;
 }
 
 void TimeBase::on_divider_change(std::function<void(Edge, std::int64_t)> listener) {

@@ -226,6 +226,10 @@ void Scheduler::refill() {
   if (in_order_end != nullptr) sort_near(static_cast<std::size_t>(in_order_end - first), n);
 }
 
+void Scheduler::insert_now(std::uint32_t slot, Generation generation) {
+  insert(now_, slot, generation);
+}
+
 Scheduler::EventId Scheduler::at(Time when, Callback callback) {
   if (when < now_) throw_past("Scheduler::at", when, now_);
   const std::uint32_t index = free_slot_index();
@@ -470,21 +474,25 @@ inline void Scheduler::run(const Entry& entry) {
   ++near_.head;
   now_ = entry.when;
   running_ = entry.generation;
-  const std::uint32_t index = entry.slot;
-  Slot& slot = slots_[index];
+  Slot& slot = slots_[entry.slot];
   // Take the event out before running it: it may schedule others (slots_ may grow).
-  // Owned slots first: nearly every event of a ring is one.
+  // Owned slots first: nearly every event of a ring is one. The others' index from the
+  // slot's address: kept from the entry, it took a register copy at every event.
   if ((slot.next_free & kOwned) != 0) [[likely]] {
     ++slot.generation;  // even: no longer pending (the action may arm it again)
     slot.action(slot.context);
-  } else if (slot.action != nullptr) {
-    const Action action = slot.action;
-    void* const context = slot.context;
-    free_slot(index);
-    action(context);
   } else {
-    run_callback(index);
+    run_unowned(static_cast<std::uint32_t>(&slot - slots_.data()));
   }
+}
+
+void Scheduler::run_unowned(std::uint32_t index) {
+  Slot& slot = slots_[index];
+  if (slot.action == nullptr) return run_callback(index);
+  const Action action = slot.action;
+  void* const context = slot.context;
+  free_slot(index);
+  action(context);
 }
 
 void Scheduler::run_callback(std::uint32_t index) {

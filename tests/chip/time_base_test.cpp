@@ -371,6 +371,56 @@ TEST(TimeBase, NoListenerIsAddedDuringACycleStart) {
   b.time_base().on_cycle_start(&adder, &Adder::hear);  // outside a cycle start: taken
 }
 
+// An idle listener is not called; one woken or idled during a cycle start is called or not
+// as its flag says at its turn (the time base walks only the range from the first listener
+// not idle to the last, which a wake during the start widens).
+TEST(TimeBase, ListenersWokenDuringACycleStartAreCalledAtTheirTurn) {
+  TimingBench b(config_mhz(32));
+  b.chip.reg_write(kTscyc0, 50);
+  struct Listener {
+    TimeBase* time_base;
+    std::vector<int>* log;
+    int me;
+    std::vector<TimeBase::CycleListenerId>* ids;
+    static void hear(void* listener, const CycleStart&) {
+      auto& l = *static_cast<Listener*>(listener);
+      l.log->push_back(l.me);
+      const auto& ids = *l.ids;
+      if (l.me == 1) {  // wakes the last (its turn to come) and the first (passed)
+        l.time_base->set_cycle_listener_idle(ids[3], false);
+        l.time_base->set_cycle_listener_idle(ids[0], false);
+      }
+      if (l.me == 3) {  // idles itself and the first again
+        l.time_base->set_cycle_listener_idle(ids[3], true);
+        l.time_base->set_cycle_listener_idle(ids[0], true);
+      }
+    }
+  };
+  std::vector<int> log;
+  std::vector<TimeBase::CycleListenerId> ids;
+  std::vector<Listener> listeners;
+  for (int i = 0; i < 4; ++i) listeners.push_back(Listener{&b.time_base(), &log, i, &ids});
+  for (Listener& l : listeners) ids.push_back(b.time_base().on_cycle_start(&l, &Listener::hear));
+  for (const std::size_t i : {0u, 2u, 3u}) b.time_base().set_cycle_listener_idle(ids[i], true);
+  b.run_to(10 * kMicrosecond + 5);
+  b.cycles().mst_detected(b.now());
+  b.run_to(20 * kMicrosecond);
+  // Every start (the free-wheel's too) the same: 0 woken after its turn, 3 before its own.
+  const auto each_start = [&log](std::vector<int> pattern) {
+    std::vector<int> all;
+    while (all.size() < log.size()) all.insert(all.end(), pattern.begin(), pattern.end());
+    return all;
+  };
+  ASSERT_FALSE(log.empty());
+  EXPECT_EQ(log, each_start({1, 3}));
+  log.clear();
+  b.time_base().set_cycle_listener_idle(ids[2], false);
+  b.cycles().mst_detected(b.now());
+  b.run_to(30 * kMicrosecond);
+  ASSERT_FALSE(log.empty());
+  EXPECT_EQ(log, each_start({1, 2, 3}));
+}
+
 // The function + context form (no std::function) keeps the same times, order and slots
 // as the callback form, and a slot it used serves a callback event afterwards.
 TEST(TimeBase, CycleTimeActionsRunLikeCallbacks) {

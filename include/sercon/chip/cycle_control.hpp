@@ -57,6 +57,9 @@ class CycleControl : public ChipUnit {
   void on_cyc_clk(sim::Level level);
   // `action(this)` at `at` (function + context: no std::function per MST).
   void recognise_at(sim::Time at, sim::Scheduler::Action action, bool cyc_clk);
+  // mst_detected() of an MST loading the counter later than now (mst_load_edge_ set), or
+  // while one is pending.
+  [[gnu::noinline]] void mst_later(sim::Time load);
   static void cyc_clk_action(void* control);
   static void slave_mst_action(void* control);  // a recognition's (recognitions_)
   static void owned_mst_action(void* control);  // mst_event_'s, at mst_load_edge_

@@ -233,7 +233,7 @@ class TimeBase : public ChipUnit {
   // A listener whose cycle start would change nothing in its present state (CON_CLK and
   // DIV_CLK unused, the usual case) is not called while it says so; it must say otherwise
   // the moment that may change (a register write, say), also during a cycle start.
-  void set_cycle_listener_idle(CycleListenerId id, bool idle) { cycle_listeners_[id].idle = idle; }
+  void set_cycle_listener_idle(CycleListenerId id, bool idle);
   // MCLKDIV changed, registered at MCLK edge `edge`; `period` is the new MCLKDIV + 1.
   void on_divider_change(std::function<void(Edge edge, std::int64_t period)> listener);
 
@@ -310,7 +310,13 @@ class TimeBase : public ChipUnit {
       ~Starting() { flag = false; }
     } starting{starting_};
     first(start);
-    for (const CycleStartListener& l : cycle_listeners_) {
+    // The listeners from the first not idle to the last (active_), mostly one (the telegram
+    // processor's, after the idle CON_CLK and DIV_CLK). A listener may wake or idle one during
+    // the start: the end is read again, as is each one's idle flag at its turn (the ones before
+    // the first have had their turn).
+    const CycleStartListener* const listeners = cycle_listeners_.data();
+    for (std::size_t i = active_.first; i < active_.end; ++i) {
+      const CycleStartListener& l = listeners[i];
       if (!l.idle) l.listener(l.context, start);
     }
   }
@@ -343,6 +349,9 @@ class TimeBase : public ChipUnit {
     bool idle = false;
   };
   std::vector<CycleStartListener> cycle_listeners_;
+  struct {
+    std::size_t first = 0, end = 0;  // no listener outside [first, end) is called (idle)
+  } active_;
   bool starting_ = false;  // the cycle-start listeners run
   std::vector<std::function<void(Edge, std::int64_t)>> divider_listeners_;
 };

@@ -86,7 +86,7 @@ class Scheduler {
       *--run.head = Entry{now_, owned, generation};
       return;
     }
-    insert(now_, owned, generation);
+    insert_now(owned, generation);
   }
   // arm_owned() with `action` for this arm: an owner whose one pending event does one of
   // several things (a list walk's transmit or end marker). The slot keeps it for later arms.
@@ -446,7 +446,10 @@ class Scheduler {
     }
     run.insert(Entry{when, slot, generation});
   }
+  // insert() at now, out of line: arm_owned_now()'s rare case (inline, it took registers).
+  [[gnu::noinline]] void insert_now(std::uint32_t slot, Generation generation);
   void run(const Entry& entry);  // takes `entry` off the front and runs its event
+  [[gnu::noinline]] void run_unowned(std::uint32_t index);  // run()'s at() events
   void run_callback(std::uint32_t index);
 
   Time now_ = 0;
