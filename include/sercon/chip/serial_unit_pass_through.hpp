@@ -294,6 +294,14 @@ inline bool SerialRepeater::settles(sim::Time leaves, sim::Time now) const {
          background_.back().since < leaves && txd.last_since() < leaves;
 }
 
+// settles() of a receiver's lazy burst: only that it has reached TxD's listener is left to
+// ask. The rest held when it hopped (would_pass(), or it came after the lazy burst before
+// it), and nothing has changed the repeater or TxD since: every way into them absorbs the
+// lazy bursts first (SerialReceiver::try_lazy_hop).
+inline bool SerialRepeater::settles_lazy(sim::Time leaves, sim::Time now) const {
+  return leaves + unit_.outputs().follower_delay() <= now;
+}
+
 // `bits` are taken: the last line gets them (no count up and down).
 inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, SharedBits&& bits) {
   forwarded_.drop_all();
@@ -352,7 +360,7 @@ inline bool SerialReceiver::settle_lazy(sim::Time now) {
   LazyBurst& lazy = lazy_.front();
   SerialRepeater& repeater = unit_.repeater();
   if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
-      repeater.settles(lazy.leaves, now) && all_done_with(now)) {
+      repeater.settles_lazy(lazy.leaves, now) && all_done_with(now)) {
     take_in_front(lazy, lazy.reports_over < now);
     // Its bits go to TxD's line: the slot is let go at once (drop_all).
     repeater.settle(lazy.leaves, lazy.reaching.bit_period, std::move(lazy.reaching.bits));
