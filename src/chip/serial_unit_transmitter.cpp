@@ -5,7 +5,7 @@
 #include <string>
 
 #include "sercon/chip/chip.hpp"
-#include "sercon/chip/line_decode_memo.hpp"
+#include "sercon/chip/line_decode_seed.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_pass_through.hpp"
 #include "sercon/chip/serial_unit_repeater.hpp"

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sercon/chip/line_decode_memo.hpp"
+#include "sercon/chip/line_decode_seed.hpp"
 #include "sercon/wire/encoder.hpp"
 #include "serial_bench.hpp"
 

@@ -38,13 +38,7 @@ const BurstDecode& decode_burst_prefix(const SharedBits& bits, std::size_t cut_b
 void seed_decode(const SharedBits& bits, const wire::EncodedFrame& where, std::uint8_t address,
                  std::span<const std::uint8_t> data, std::uint16_t fcs);
 
-// One telegram as the transmitter sends it: a bits object of its own holding exactly the
-// telegram's line bits, coded as wire::encode_telegram() codes them from line level
-// `level` (the level after them on return), with seed_decode's decode. The object is a
-// recycled one written over in place (shared_bits.hpp, rewrite_shared_bits): its old bits'
-// bytes and its old decode's storage are set again, not cleared first (test
-// serial_DecodeSeed.EncodeSeededIsTheGeneralPath).
-SharedBits encode_seeded(bool& level, std::uint8_t address, std::span<const std::uint8_t> data);
+// encode_seeded(), the transmitter's telegram coded with this decode: line_decode_seed.hpp.
 
 // Decodes made on this thread: bursts run through a wire::LineDecoder (memo misses) and
 // decodes seeded by a transmitter, one per telegram sent. A telegram that crosses a ring

@@ -270,7 +270,8 @@ template <class Full>
   std::uint8_t* const first = out.reserved_bytes();
   std::uint8_t* at = first;
   bool level = initial_level_high;
-  const auto full = [&at, &level](std::uint64_t w) {
+  // Always inline: in a flattened caller (the chip's transmitter) GCC made it a call.
+  const auto full = [&at, &level] [[gnu::always_inline]] (std::uint64_t w) {
     const std::uint64_t x = changes_so_far(~w);
     const std::uint64_t levels = level ? ~x : x;
     LineBits::store_word(at, levels);
