@@ -76,6 +76,7 @@ struct Decoded {
 template <class Full>
 [[gnu::always_inline]] inline void put(Decoded& d, std::uint64_t msb_first, unsigned n,
                                        const Full& full) {
+  if (d.count >= 64) __builtin_unreachable();  // as put_top
   const unsigned room = 64 - d.count;
   if (n < room) {
     d.bits |= msb_first << (room - n);
@@ -139,6 +140,8 @@ inline std::uint64_t five_ones(std::uint64_t x) {
 template <class Full>
 [[gnu::always_inline]] inline void put_top(Decoded& d, std::uint64_t top, unsigned n,
                                            const Full& full) {
+  // Told, so that a whole word's put (n = 64, the word loop) has no test of its size.
+  if (d.count >= 64) __builtin_unreachable();
   d.bits |= top >> d.count;
   const unsigned total = d.count + n;
   if (total < 64) {
@@ -229,13 +232,18 @@ template <class Full>
     return v;
   }
   fcs.update_word(address, 1);
-  while (n > 6) {
-    const std::size_t k = n < 8 ? n : 8;
-    const std::uint64_t w = k == 8 ? load_le8(p) : load_le(p, k);
-    fcs.update_word(w, static_cast<unsigned>(k));
-    stuff_word(d, w, static_cast<unsigned>(k), full);
-    p += k;
-    n -= k;
+  // Whole words with the sizes known (a word's bits fill the coder's word exactly: no
+  // tests of them); of 7 left, one byte by the table, so that the tail takes the rest.
+  for (; n >= 8; p += 8, n -= 8) {
+    const std::uint64_t w = load_le8(p);
+    fcs.update_word(w, 8);
+    stuff_word(d, w, 8, full);
+  }
+  if (n == 7) {
+    const std::uint64_t b = *p++;
+    fcs.update_word(b, 1);
+    stuff_word(d, b, 1, full);
+    n = 6;
   }
   const std::uint64_t tail = load_le(p, n);
   if (n != 0) fcs.update_word(tail, static_cast<unsigned>(n));
@@ -261,30 +269,35 @@ template <class Full>
 [[gnu::always_inline]] inline TelegramCoding encode_telegram_inline(
     LineBits& out, bool initial_level_high, std::uint8_t address,
     std::span<const std::uint8_t> data) {
-  // Every byte of flags, address, data and FCS is written again (whole words from bit 0):
-  // of the old bits, only bytes past those are cleared.
-  out.drop_for_overwrite(data.size() + 5);
+  // Every byte of flags, address, data and FCS is written again, as whole words from bit 0
+  // (so the bytes of 8 * (size + 5) bits rounded up to a word): of the old bits, only bytes
+  // past those are cleared.
+  out.drop_for_overwrite((data.size() + 5 + 7) & ~std::size_t{7});
   // One allocation for all of it (flags and at most 10 bits per stuffed byte, and a word of
   // room past them), every word stored at a byte boundary into it (reserved_bytes).
   out.reserve(16 + 10 * (data.size() + 3) + 64);
   std::uint8_t* const first = out.reserved_bytes();
   std::uint8_t* at = first;
-  bool level = initial_level_high;
+  // NRZI as one XOR a word: changes_so_far(~w) is changes_so_far(w) ^ kAlternate (the
+  // prefix XOR is linear, and of all 1s it alternates from 1 at the MSB), and the level
+  // before the word flips it all when high. `flip` keeps both: kAlternate ^ (0 or all 1s).
+  constexpr std::uint64_t kAlternate = 0xAAAAAAAAAAAAAAAAull;
+  std::uint64_t flip = initial_level_high ? ~kAlternate : kAlternate;
   // Always inline: in a flattened caller (the chip's transmitter) GCC made it a call.
-  const auto full = [&at, &level] [[gnu::always_inline]] (std::uint64_t w) {
-    const std::uint64_t x = changes_so_far(~w);
-    const std::uint64_t levels = level ? ~x : x;
+  const auto full = [&at, &flip] [[gnu::always_inline]] (std::uint64_t w) {
+    const std::uint64_t levels = changes_so_far(w) ^ flip;
     LineBits::store_word(at, levels);
     at += 8;
-    level = (levels & 1u) != 0;
+    flip = kAlternate ^ (0 - (levels & 1u));
   };
   Decoded d;
   const std::uint16_t fcs = code_telegram(d, address, data, full);
   std::size_t size = 8 * static_cast<std::size_t>(at - first);
+  bool level = flip != kAlternate;
   if (d.count != 0) {
+    // The bits past d.count (0) change nothing above them: they are masked off after.
     const std::uint64_t mask = kOnes << (64 - d.count);  // d.count is 1..63
-    const std::uint64_t x = changes_so_far(~d.bits & mask);
-    const std::uint64_t levels = (level ? ~x : x) & mask;
+    const std::uint64_t levels = (changes_so_far(d.bits) ^ flip) & mask;
     LineBits::store_word(at, levels);  // the rest 0
     level = ((levels >> (64 - d.count)) & 1u) != 0;
     size += d.count;
