@@ -294,14 +294,6 @@ inline bool SerialRepeater::settles(sim::Time leaves, sim::Time now) const {
          background_.back().since < leaves && txd.last_since() < leaves;
 }
 
-// settles() of a receiver's lazy burst: only that it has reached TxD's listener is left to
-// ask. The rest held when it hopped (would_pass(), or it came after the lazy burst before
-// it), and nothing has changed the repeater or TxD since: every way into them absorbs the
-// lazy bursts first (SerialReceiver::try_lazy_hop).
-inline bool SerialRepeater::settles_lazy(sim::Time leaves, sim::Time now) const {
-  return leaves + unit_.outputs().follower_delay() <= now;
-}
-
 // `bits` are taken: the last line gets them (no count up and down).
 inline void SerialRepeater::settle(sim::Time leaves, sim::Time period, SharedBits&& bits) {
   forwarded_.drop_all();
@@ -354,13 +346,18 @@ inline void SerialReceiver::take_in_front(const LazyBurst& lazy, bool over) {
 // reached the next receiver: it is in force at every stage of the node and at the far end,
 // so each timeline would hold just it once pruned. Each is set to that at once (settle),
 // without the general booking's prunes and appends. False: absorb_waiting() books them.
+// Only that it has reached the next receiver and the entries' reports are left to ask: it
+// came after the timeline's last entry and the repeater's settles() held when it hopped
+// (try_lazy_hop: would_pass(), or after the lazy burst before it), and nothing has changed
+// the timeline, the repeater or TxD since (every way into them absorbs the lazy bursts
+// first). Having reached the next receiver, it has reached TxD's listener: TxD's follower
+// delay is the one it hopped with (set at the first hop of a run, the same for the rest).
 inline bool SerialReceiver::settle_lazy(sim::Time now) {
   prune_lazy(now);  // a burst over by now would only be pruned
   if (lazy_.size() != 1) return false;
   LazyBurst& lazy = lazy_.front();
-  SerialRepeater& repeater = unit_.repeater();
-  if (lazy.reaches() <= now && timeline_.back().segment.since < lazy.arrived &&
-      repeater.settles_lazy(lazy.leaves, now) && all_done_with(now)) {
+  if (lazy.reaches() <= now && all_done_with(now)) {
+    SerialRepeater& repeater = unit_.repeater();
     take_in_front(lazy, lazy.reports_over < now);
     // Its bits go to TxD's line: the slot is let go at once (drop_all).
     repeater.settle(lazy.leaves, lazy.reaching.bit_period, std::move(lazy.reaching.bits));

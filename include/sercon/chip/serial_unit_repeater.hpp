@@ -72,7 +72,6 @@ class SerialRepeater {
   // whether the line and TxD's would then hold just it once pruned (settles), and so
   // set them (settle). Inline (serial_unit_pass_through.hpp).
   inline bool settles(sim::Time leaves, sim::Time now) const;
-  inline bool settles_lazy(sim::Time leaves, sim::Time now) const;  // settles() of a lazy burst
   [[gnu::always_inline]] inline void settle(sim::Time leaves, sim::Time period, SharedBits&& bits);
   // Before anything reads or changes the repeater or TxD: the bursts passed on and not yet
   // booked there (those of read hops, then the node's lazy ones) are booked.
