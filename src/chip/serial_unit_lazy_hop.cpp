@@ -218,7 +218,7 @@ void SerialReceiver::absorb_waiting() {
   // booking out of order (a missed trigger) throws; the lazy bursts are let go then, so the
   // node does not throw again at every later absorb.
   struct LetGo {
-    sim::CircularQueue<LazyBurst>& lazy;
+    sim::SlotQueue<LazyBurst, 32>& lazy;
     ~LetGo() { lazy.drop_all(); }  // as drop_front() lets them go
   } let_go{lazy_};
   for (std::size_t i = 0; i < lazy_.size(); ++i) {

@@ -37,6 +37,7 @@
 #include "sercon/sim/front_drop_vector.hpp"
 #include "sercon/sim/reciprocal.hpp"
 #include "sercon/sim/scheduler.hpp"
+#include "sercon/sim/slot_queue.hpp"
 
 namespace sercon::chip {
 
@@ -483,7 +484,9 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
     sim::Time reports_over = 0;  // after ends: what a report of its frames would come by
     sim::Time reaches() const { return reaching.start; }
   };
-  sim::CircularQueue<LazyBurst> lazy_;  // circular: ~254 pass each node per cycle in Ring254
+  // ~254 pass each node per cycle in Ring254, a few waiting at a time: slots reused, the
+  // front and back as pointers (SlotQueue).
+  sim::SlotQueue<LazyBurst, 32> lazy_;
   bool lazy_hops_ = true;
   // The rate a burst must come at to hop lazily: the unit's bit period while lazy hops are
   // on and the repeater too (0 while not running), else 0. Kept where those change (asked
