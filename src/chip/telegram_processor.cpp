@@ -190,6 +190,30 @@ void TelegramProcessor::offer(sim::Time start, std::uint8_t address, const ListI
 }
 
 void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
+  const bool current = wants_.receiving == telegram.start;  // never kNone
+  if (wants_.flag_clear != telegram.start) [[likely]] {
+    if (!is_mst(telegram.frame)) {
+      if (current) finish_current(telegram);
+      return;
+    }
+    if (!current) return on_mst_telegram(telegram);
+  }
+  on_telegram_general(telegram);
+}
+
+void TelegramProcessor::finish_current(const ReceivedTelegram& telegram) {
+  const ListItem& item = receiving_.item;  // kept: stop_receiving() only clears the start
+  finish_receive(item, telegram.frame);
+  list_.taken(item);  // an address-255 telegram held the walk at its header
+}
+
+void TelegramProcessor::on_mst_telegram(const ReceivedTelegram& telegram) {
+  const wire::DecodedFrame& frame = telegram.frame;
+  // Recognised 5.5 of its own bit times after its end, as its detection was timed.
+  if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(telegram.bit_period));
+}
+
+void TelegramProcessor::on_telegram_general(const ReceivedTelegram& telegram) {
   const wire::DecodedFrame& frame = telegram.frame;
   const bool current = wants_.receiving == telegram.start;  // never kNone
   if (wants_.flag_clear == telegram.start) {
@@ -198,15 +222,10 @@ void TelegramProcessor::on_telegram(const ReceivedTelegram& telegram) {
   }
   if (is_mst(frame)) {
     if (current) withdraw_mst();
-    // Recognised 5.5 of its own bit times after its end, as its detection was timed.
-    if (frame.ok()) on_mst(frame, telegram.end + five_and_a_half_bits(telegram.bit_period));
+    on_mst_telegram(telegram);
     return;
   }
-  if (current) {
-    const ListItem& item = receiving_.item;  // kept: stop_receiving() only clears the start
-    finish_receive(item, frame);
-    list_.taken(item);  // an address-255 telegram held the walk at its header
-  }
+  if (current) finish_current(telegram);
 }
 
 void TelegramProcessor::withdraw_mst() {

@@ -93,9 +93,16 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   [[gnu::flatten]] void on_cycle_start(const CycleStart& start);
   void on_send_mst();
   [[gnu::flatten]] void on_telegram_start(sim::Time start, std::uint8_t address);
+  // The two usual telegrams told apart inline (in the serial unit's handler), before any
+  // register is saved: the one being received (finish_current) and an MST for no header
+  // (on_mst_telegram, a slave's cycle start); the rest out of line (on_telegram_general).
+  inline void on_telegram(const ReceivedTelegram& telegram);
   // Flattened: the walk on past a header held for an address-255 telegram (list_.taken)
   // inlines into it, no call of its own.
-  [[gnu::flatten]] void on_telegram(const ReceivedTelegram& telegram);
+  [[gnu::flatten, gnu::noinline]] void finish_current(const ReceivedTelegram& telegram);
+  [[gnu::noinline]] void on_mst_telegram(const ReceivedTelegram& telegram);
+  // Any telegram, the rare ones too (a 410B FLMDTADR clear pending, an MST taken by a header).
+  [[gnu::noinline]] void on_telegram_general(const ReceivedTelegram& telegram);
   void on_mst(const wire::DecodedFrame& frame, sim::Time recognised);
   // offer() and finish_receive() are inline (defined in the .cpp, each called once there): a
   // telegram's start and its detection are one call each from the serial unit
@@ -107,12 +114,12 @@ class TelegramProcessor final : public ChipUnit, private ListClient, private Rec
   [[gnu::noinline]] void offer_while_receiving(sim::Time start, std::uint8_t address);
   // `lost_item`: the header of a telegram never detected (nullptr: none).
   inline void offer(sim::Time start, std::uint8_t address, const ListItem* lost_item);
-  // Out of line: on_telegram is flattened, and an MST taken by a header is rare.
+  // Out of line: finish_current is flattened, and an MST taken by a header is rare.
   [[gnu::noinline]] void withdraw_mst();
   // `item`: the header receiving_ holds (stop_receiving() leaves it as it is).
   [[gnu::always_inline]] inline void finish_receive(const ListItem& item,
                                                     const wire::DecodedFrame& frame);
-  // Any other telegram (ReceivePath::finish). Out of line: on_telegram is flattened, and
+  // Any other telegram (ReceivePath::finish). Out of line: finish_current is flattened, and
   // this path's interrupts and list faults would crowd the usual one.
   [[gnu::noinline]] void finish_receive_general(const ListItem& item,
                                                 const wire::DecodedFrame& frame);
