@@ -339,6 +339,12 @@ void TelegramProcessor::transmit_due(const ListItem& item) {
     data = transmit_.gather(item, val, port());
   }
   const sim::Time end = serial_.transmitter().send(now, item.adr(), data);
+  // Mostly the last telegram's event is held and INT_TEND is latched still: cancelling that
+  // event raises nothing, and this one is held in its place.
+  if (tend_held_ && fields().tend_latched) [[likely]] {
+    scheduler_.hold_owned_anew(tend_event_, end);
+    return;
+  }
   // The previous telegram's end may be due at this very instant: raise it now. A held one
   // would find the flag latched (its clear queues it).
   if (scheduler_.owned_pending(tend_event_)) {

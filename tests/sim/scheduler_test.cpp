@@ -685,7 +685,8 @@ TEST(Scheduler, ARunInsideAnEventLeavesTheOuterRunItsOwnEnd) {
 // flag when they run; clears and notes are often due at the owner's very time, scheduled
 // before and after its hold, some moved there; the owner is armed from outside and from
 // events (also for now), cancelled and moved; run by run_until() and step(). Some holds
-// are lazy (hold_owned_lazily), their time given by the owner when asked.
+// are lazy (hold_owned_lazily), their time given by the owner when asked; some are held anew
+// (hold_owned_anew) over the last one, pending or not.
 struct HeldOwner {
   Scheduler& s;
   bool& flag;
@@ -708,6 +709,12 @@ struct HeldOwner {
   void arm(Time when) {
     if (!held_form) {
       id = s.at(when, &HeldOwner::raise, this);
+      return;
+    }
+    // Every 40 ps from 10 on held again in one call (cancel and hold: hold_owned_anew).
+    if (flag && when / 10 % 4 == 1) {
+      s.hold_owned_anew(slot, when);
+      held = true;
       return;
     }
     if (s.owned_pending(slot)) s.cancel_owned(slot);  // a passed held one

@@ -164,7 +164,7 @@ class TimeBase : public ChipUnit {
   [[gnu::always_inline]] bool at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
                                             sim::Scheduler::Action action) {
     return owned_at_cycle_time(owned, cycle_time, [&](sim::Time when) {
-      scheduler_.arm_owned(owned.slot_, when, action);
+      scheduler_.arm_owned_idle(owned.slot_, when, action);
     });
   }
   // The same, deferred (Scheduler::defer_owned): for an event mostly dropped by the next
@@ -181,11 +181,12 @@ class TimeBase : public ChipUnit {
   // change. Its time is worked out only when something asks, by `resolve`, which gives
   // resolve_held(owned) (the owner's function of the slot's context). Not scheduled when the
   // step is not ahead, as at_cycle_time(); the owner is not told so (its late handling
-  // would change nothing either).
+  // would change nothing either). As at_cycle_time(), `owned`'s earlier event has run or was
+  // cancelled.
   [[gnu::always_inline]] void hold_at_cycle_time(OwnedEvent& owned, std::int64_t cycle_time,
                                                  sim::Scheduler::Action action,
                                                  sim::Scheduler::Resolve resolve) {
-    scheduler_.hold_owned_lazily(owned.slot_, action, resolve);
+    scheduler_.hold_idle_owned_lazily(owned.slot_, action, resolve);
     owned.cycle_time_ = cycle_time;
     const sim::Time now = scheduler_.now();
     owned.when_ = now;  // not known yet: taken as now, so the next cycle start leaves it

@@ -94,6 +94,16 @@ class Scheduler {
     arm_owned(owned, when);  // first: refused, it leaves the slot's action as it was
     slots_[owned].action = action;
   }
+  // arm_owned(owned, when, action) for a caller that knows `when` is after now and the event
+  // not pending (TimeBase's owned events, armed only once their last has run or was
+  // cancelled): neither is tested (asserted in debug builds). Inline: a list walk arms one
+  // at every transmit header.
+  [[gnu::always_inline]] void arm_owned_idle(OwnedSlot owned, Time when, Action action) {
+    assert(when > now_ && !owned_pending(owned));
+    Slot& slot = slots_[owned];
+    insert(when, owned, take_order(slot, when));
+    slot.action = action;
+  }
   // arm_owned(owned, when, action) without a queue entry until the run comes to `when` (or
   // something is moved to `when`): the event then takes the place among the events due at
   // `when` that arm_owned() would have given it now (after those scheduled before it,
@@ -140,6 +150,20 @@ class Scheduler {
       held_.push_back(owned);
     slot.next_free = (flags & ~kLazy) | kHeld | kListed;
   }
+  // cancel_owned() and hold_owned() with the slot's action in one, for an owner holding its
+  // event again and again (INT_TEND at every telegram sent). Inline: after the slot's first
+  // hold, the cancel and the pending test come down to a new generation.
+  void hold_owned_anew(OwnedSlot owned, Time when) {
+    Slot& slot = slots_[owned];
+    const std::uint32_t flags = slot.next_free;
+    if (when < now_ || (flags & kListed) == 0) [[unlikely]] {
+      cancel_owned(owned);
+      return hold_owned(owned, when, slot.action);  // refuses a past `when`
+    }
+    slot.generation = next_generation();  // odd: live (an earlier event's entry no longer matches)
+    slot.when = when;
+    slot.next_free = (flags & ~kLazy) | kHeld;
+  }
   // hold_owned() for an owner that knows its event's time only by working it out (a list's
   // end marker at its step of the cycle counter): the event takes its order now, and
   // `resolve(context)` (the slot's context) gives its time when something asks for it: the
@@ -152,6 +176,12 @@ class Scheduler {
   void hold_owned_lazily(OwnedSlot owned, Action action, Resolve resolve) {
     if (owned_pending(owned)) [[unlikely]]
       refuse_arm("Scheduler::hold_owned_lazily", owned, now_);
+    hold_idle_owned_lazily(owned, action, resolve);
+  }
+  // hold_owned_lazily() for a caller that knows the event is not pending (as
+  // arm_owned_idle()): not tested (asserted in debug builds).
+  void hold_idle_owned_lazily(OwnedSlot owned, Action action, Resolve resolve) {
+    assert(!owned_pending(owned));
     assert(resolver_is(owned, resolve));  // a slot keeps the resolve of its first lazy hold
     Slot& slot = slots_[owned];
     slot.generation = next_generation();  // odd: live
