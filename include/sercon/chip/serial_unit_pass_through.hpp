@@ -7,6 +7,8 @@
 // SerialTransmitter::send.
 #pragma once
 
+#include <cassert>
+
 #include "sercon/chip/chip.hpp"
 #include "sercon/chip/serial_unit.hpp"
 #include "sercon/chip/serial_unit_outputs.hpp"
@@ -358,6 +360,8 @@ inline bool SerialReceiver::settle_lazy(sim::Time now) {
   LazyBurst& lazy = lazy_.front();
   if (lazy.reaches() <= now && all_done_with(now)) {
     SerialRepeater& repeater = unit_.repeater();
+    // What the hop made sure of, and nothing has changed since (checked in debug builds).
+    assert(timeline_.back().segment.since < lazy.arrived && repeater.settles(lazy.leaves, now));
     take_in_front(lazy, lazy.reports_over < now);
     // Its bits go to TxD's line: the slot is let go at once (drop_all).
     repeater.settle(lazy.leaves, lazy.reaching.bit_period, std::move(lazy.reaching.bits));

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <bit>
+#include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -76,6 +77,7 @@ struct Decoded {
 template <class Full>
 [[gnu::always_inline]] inline void put(Decoded& d, std::uint64_t msb_first, unsigned n,
                                        const Full& full) {
+  assert(d.count < 64 && n <= 64);             // checked in debug builds: the hint below
   if (d.count >= 64) __builtin_unreachable();  // as put_top
   const unsigned room = 64 - d.count;
   if (n < room) {
@@ -141,6 +143,7 @@ template <class Full>
 [[gnu::always_inline]] inline void put_top(Decoded& d, std::uint64_t top, unsigned n,
                                            const Full& full) {
   // Told, so that a whole word's put (n = 64, the word loop) has no test of its size.
+  assert(d.count < 64 && n <= 64);
   if (d.count >= 64) __builtin_unreachable();
   d.bits |= top >> d.count;
   const unsigned total = d.count + n;
