@@ -19,6 +19,10 @@ namespace {
 }  // namespace
 
 void Scheduler::refuse_past(const char* what, Time when) const { throw_past(what, when, now_); }
+void Scheduler::refuse_past_or_null(const char* what, Time when) const {
+  if (when < now_) throw_past(what, when, now_);
+  throw std::invalid_argument(std::string(what) + ": no action given");
+}
 
 void Scheduler::refuse_arm(const char* what, OwnedSlot owned, Time when) const {
   if (when < now_) throw_past(what, when, now_);

@@ -106,6 +106,16 @@ TEST(Scheduler, RefusesThePast) {
   EXPECT_NO_THROW(s.at(100, [] {}));
 }
 
+// Bad input gets a clear error: an event with no action would otherwise be taken for an
+// at() event with a callback that was never stored.
+TEST(Scheduler, RefusesAnEventWithoutAnAction) {
+  Scheduler s;
+  EXPECT_THROW(s.at(10, nullptr, nullptr), std::invalid_argument);
+  EXPECT_THROW(s.after(10, nullptr, nullptr), std::invalid_argument);
+  EXPECT_EQ(s.pending_count(), 0u);
+  s.run_until(20);  // nothing half-made is left to run
+}
+
 TEST(Scheduler, StepRunsOneEventAndSkipsCancelledOnes) {
   Scheduler s;
   int count = 0;

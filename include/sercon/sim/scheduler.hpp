@@ -43,11 +43,11 @@ class Scheduler {
   // Runs `action(context)` at `when`; same rules. `context` must outlive the event.
   // Inline: most events of a run are scheduled this way.
   EventId at(Time when, Action action, void* context) {
-    if (when < now_) [[unlikely]]
-      refuse_past("Scheduler::at", when);
+    if (when < now_ || action == nullptr) [[unlikely]]
+      refuse_past_or_null("Scheduler::at", when);
     const std::uint32_t index = free_slot_index();
     Slot& slot = slots_[index];
-    slot.action = action;
+    slot.action = action;  // never null: a null action marks an at() event with a Callback
     slot.context = context;
     return take_slot(index, when);
   }
@@ -329,6 +329,7 @@ class Scheduler {
   // Whether the event of generation `a` was scheduled before that of `b`.
   static bool earlier(Generation a, Generation b) { return a < b; }
   [[noreturn]] void refuse_past(const char* what, Time when) const;
+  [[noreturn]] void refuse_past_or_null(const char* what, Time when) const;
   // arm_owned() refused: `when` in the past, or the owned event pending already.
   [[noreturn, gnu::cold]] void refuse_arm(const char* what, OwnedSlot owned, Time when) const;
   // A free slot's index (the slot is still on the free list).
