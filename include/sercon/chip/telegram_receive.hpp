@@ -71,7 +71,9 @@ class ReceivePath {
     if (data + count > size) return false;
     const std::uint8_t* const bytes = frame.data.data() + 2 * first;
     // Word 0 and the marks before the data: a byte copy may alias anything, and what they
-    // need would be loaded again after it (pin changes are told after the event).
+    // need would be loaded again after it. The order cannot be seen: the data never overlaps
+    // word 0, the marks go to their own array, and a BUSYN change the marks make runs no
+    // reaction (BUSYN has none) and is told to watchers only at the end of the event.
     const bool achk = item.has(telegram::kAchk);
     const std::uint8_t address = frame.address;
     ram_.update_and_touch_run(
