@@ -1,6 +1,7 @@
 #include "sercon/chip/serial_unit_receiver.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <stdexcept>
 #include <string>
 
@@ -511,10 +512,15 @@ void SerialReceiver::consider_more(Entry& e) {
   arm(Report{st.telegram_report, e.serial, 0, true});
 }
 
-// The report event for `r`, none pending: the owned slot of its kind.
+// The report event for `r`, none pending: the owned slot of its kind. Both slots are idle
+// (report_armed_ is false at every call: the slot of a planned report is pending only while
+// it is set) and no report planned is past (each caller takes reports at or after now), so
+// the scheduler's tests are left out (asserted in debug builds).
 inline void SerialReceiver::arm(const Report& r) {
+  assert(!report_armed_);
   report_ = r;
-  scheduler_.arm_owned(r.telegram ? telegram_report_event_ : start_report_event_, r.when);
+  const sim::Scheduler::OwnedSlot slot = r.telegram ? telegram_report_event_ : start_report_event_;
+  scheduler_.arm_owned_idle(slot, r.when);
   report_armed_ = true;
 }
 
