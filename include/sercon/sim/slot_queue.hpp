@@ -6,7 +6,7 @@
 // buffer, so the front and the back are plain pointers: a receiver's lazy bursts, asked
 // at every lazy hop, where the ring's index arithmetic cost some ten instructions a hop
 // (docs/serial-and-ring.md, "Lazy hops"). When the back reaches the buffer's end the
-// elements are swapped to its start (or the buffer grows); drop_all() starts again there.
+// elements are moved to its start (or the buffer grows); drop_all() starts again there.
 #pragma once
 
 #include <cstddef>
@@ -45,14 +45,14 @@ class SlotQueue {
   void drop_all() { first_ = last_ = slots_.data(); }
 
  private:
-  // The back is at the buffer's end: the elements are swapped to its start when they fill
-  // at most half of it (so they land on slots none of them is in), else moved to a buffer
-  // twice the size.
+  // The back is at the buffer's end: the elements are moved to its start when they fill
+  // at most half of it (so they land on slots none of them is in; what those held is let
+  // go, the slots they leave hold nothing), else to a buffer twice the size.
   [[gnu::noinline, gnu::cold]] void make_room() {
     const std::size_t n = size();
     T* const start = slots_.data();
     if (first_ != start && 2 * n <= slots_.size()) {
-      for (std::size_t i = 0; i < n; ++i) std::swap(start[i], first_[i]);
+      for (std::size_t i = 0; i < n; ++i) start[i] = std::move(first_[i]);
     } else {
       std::vector<T> bigger(slots_.empty() ? kMinCapacity : 2 * slots_.size());
       for (std::size_t i = 0; i < n; ++i) bigger[i] = std::move(first_[i]);
