@@ -34,7 +34,7 @@ SerialUnit::~SerialUnit() = default;
 void SerialUnit::reset(ResetCause) {
   receiver_->absorb_lazy();  // at the rate and settings they were passed on with
   running_ = false;
-  bit_period_ = 0;
+  set_bit_period(0);
   receiver_->refresh_hop_period();
   transmitter_->reset();
   receiver_->reset();
@@ -45,7 +45,7 @@ void SerialUnit::reset(ResetCause) {
 
 void SerialUnit::release() {
   running_ = true;
-  bit_period_ = compute_bit_period();
+  set_bit_period(compute_bit_period());
   receiver_->refresh_hop_period();
   repon_ = fields_.repon.on(chip_.regs());
   poltxd_ = fields_.poltxd.on(chip_.regs());
@@ -80,7 +80,7 @@ void SerialUnit::on_register_change(std::uint8_t address) {
     const bool poltxd = fields_.poltxd.on(regs);
     if (period == bit_period_ && repon == repon_ && poltxd == poltxd_) return;
     const bool rate_changed = period != bit_period_;
-    bit_period_ = period;
+    set_bit_period(period);
     receiver_->refresh_hop_period();
     repon_ = repon;
     poltxd_ = poltxd;

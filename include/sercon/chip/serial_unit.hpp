@@ -15,6 +15,7 @@
 #include "sercon/chip/chip_unit.hpp"
 #include "sercon/chip/line.hpp"
 #include "sercon/chip/serial_unit_fields.hpp"
+#include "sercon/sim/reciprocal.hpp"
 #include "sercon/sim/time.hpp"
 #include "sercon/wire/decoder.hpp"
 
@@ -140,10 +141,11 @@ class SerialUnit : public ChipUnit {
 
   // First TxC edge at or after t: the transmit bit clock ticks at k * bit_period() from
   // time 0 (SCLK grid), and a telegram can only begin on a tick. Inline: asked twice for
-  // every telegram sent.
+  // every telegram sent; the division by the cached reciprocal (a 64-bit division is slow).
   sim::Time next_bit_edge(sim::Time t) const {
     if (bit_period_ == 0 || t <= 0) return t;
-    return (t + bit_period_ - 1) / bit_period_ * bit_period_;
+    const auto ticks = bit_grid_.divide(static_cast<std::uint64_t>(t + bit_period_ - 1));
+    return static_cast<sim::Time>(ticks) * bit_period_;
   }
 
   // --- transmitter (the telegram processor's side) ---------------------------------------
@@ -212,7 +214,12 @@ class SerialUnit : public ChipUnit {
   Chip& chip_;
   SerialFields fields_;
   bool running_ = false;
-  sim::Time bit_period_ = 0;  // cached: Chip::serial_clocks() looks fields up by name
+  sim::Time bit_period_ = 0;     // cached: Chip::serial_clocks() looks fields up by name
+  sim::Reciprocal bit_grid_{0};  // bit_period_'s, for next_bit_edge()
+  void set_bit_period(sim::Time period) {
+    bit_period_ = period;
+    bit_grid_ = sim::Reciprocal(static_cast<std::uint64_t>(period));
+  }
   bool repon_ = false, poltxd_ = false;
   std::uint16_t control_ = 0;
   std::unique_ptr<TxdOutputs> outputs_;
