@@ -53,12 +53,7 @@ sim::Time SerialTransmitter::send(sim::Time start, std::uint8_t address,
   if (((fill_bits + 7) / 8) % 2 != 0) level_ = !level_;
   // With the receivers' decode, known from what was encoded (docs/serial-and-ring.md,
   // "Receiver").
-  SharedBits& kept = kept_[next_kept_];
-  LineBurst burst{begin_at, period, encode_seeded_kept(kept, level_, address, data)};
-  if constexpr (kRecycleBits) {
-    kept = burst.bits;  // the same bits when written over them: no count
-    next_kept_ = (next_kept_ + 1) % kKept;
-  }
+  LineBurst burst{begin_at, period, encode_seeded(level_, address, data)};
   free_at_ = begin_at + static_cast<sim::Time>(burst.bits->size()) * period;  // burst.end()
   sent_since_reset_ = true;
   unit_.repeater().own(std::move(burst), free_at_, now);  // last use

@@ -157,64 +157,6 @@ TEST(serial_DecodeSeed, EncodeSeededIsTheGeneralPath) {
   }
 }
 
-// encode_seeded_kept writes the telegram over the kept one's object when no one else holds
-// it (the transmitter's kept telegrams, serial_unit_transmitter.hpp), else takes another:
-// bits, level and decode as the general path gives them, and a held telegram untouched.
-TEST(serial_DecodeSeed, EncodeSeededKeptIsTheGeneralPath) {
-  std::mt19937_64 rng(0x4B33);
-  std::uniform_int_distribution<unsigned> byte(0, 255);
-  std::uniform_int_distribution<std::size_t> size(0, 120);
-  std::bernoulli_distribution ff(0.3);
-  SharedBits kept;
-  int written_over = 0;
-  for (int n = 0; n < 2000; ++n) {
-    const bool held_elsewhere = n % 3 == 0;
-    const SharedBits other = held_elsewhere ? kept : SharedBits{};
-    const wire::LineBits kept_bits = kept ? *kept : wire::LineBits{};
-    if (kept && n % 7 == 0) decode_burst_prefix(kept, 20);  // a cut decode left on it
-    const auto address = static_cast<std::uint8_t>(byte(rng));
-    std::vector<std::uint8_t> data(size(rng) / (n % 4 == 0 ? 1 : 12));
-    for (std::uint8_t& b : data) b = ff(rng) ? 0xFF : static_cast<std::uint8_t>(byte(rng));
-    const bool level_before = (n & 2) != 0;
-
-    bool level = level_before;
-    const std::size_t before = burst_decode_count();
-    SharedBits rewritten = encode_seeded_kept(kept, level, address, data);
-    EXPECT_EQ(burst_decode_count(), before + 1);
-    const bool over = rewritten == kept;
-    written_over += over ? 1 : 0;
-    EXPECT_FALSE(over && (held_elsewhere || !kRecycleBits)) << n;
-    if (other) {
-      EXPECT_EQ(*other, kept_bits) << n;
-    }
-
-    wire::TelegramCoding c;
-    const SharedBits general = write_shared_bits(
-        [&](wire::LineBits& out) { c = wire::encode_telegram(out, level_before, address, data); });
-    seed_decode(general, c.frame, address, data, c.fcs);
-    ASSERT_EQ(*rewritten, *general) << "telegram " << n;
-    EXPECT_EQ(level, c.level_after) << n;
-    wire::LineBits grown = *rewritten;  // the bytes past the bits are 0
-    grown.append_run(false, 2000);
-    wire::LineBits expected = *general;
-    expected.append_run(false, 2000);
-    ASSERT_EQ(grown, expected) << "telegram " << n;
-    EXPECT_TRUE(rewritten.decodes().prefixes.empty());
-    ASSERT_NE(rewritten.decodes().whole.get(), nullptr);
-    expect_same(*rewritten.decodes().whole, *general.decodes().whole);
-    expect_same(*rewritten.decodes().whole, decode_burst(share_bits(*general)));
-    if (::testing::Test::HasFailure()) {
-      ADD_FAILURE() << "telegram " << n << " address " << unsigned{address} << " size "
-                    << data.size();
-      return;
-    }
-    kept = std::move(rewritten);
-  }
-  if (kRecycleBits) {
-    EXPECT_GT(written_over, 1000);
-  }
-}
-
 // The transmitter seeds every telegram it sends: the burst on TxD carries its decode, the
 // same as a receiver makes from a copy of the bits, and no receiver decodes it again.
 TEST(serial_DecodeSeed, TransmitterSeedsItsTelegrams) {

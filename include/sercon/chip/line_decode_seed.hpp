@@ -118,36 +118,16 @@ inline void move_head_and_tail(std::uint8_t* to, const std::uint8_t* from, std::
 // recycled one written over in place (shared_bits.hpp, rewrite_shared_bits): its old bits'
 // bytes and its old decode's storage are set again, not cleared first (test
 // serial_DecodeSeed.EncodeSeededIsTheGeneralPath).
-namespace seed_detail {
-
-// encode_seeded's writer, over `bits` and `d`.
-[[gnu::always_inline]] inline void encode_over(wire::LineBits& bits, BurstDecodes& d, bool& level,
-                                               std::uint8_t address,
-                                               std::span<const std::uint8_t> data) {
-  const wire::TelegramCoding c =
-      wire::encoder_detail::encode_telegram_inline(bits, level, address, data);
-  level = c.level_after;
-  if (!d.prefixes.empty()) d.prefixes.clear();
-  if (!d.whole) d.whole = d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
-  // Every decode is made non-const (run_decoder, seed_decode), so it may be filled again.
-  fill_seed(const_cast<BurstDecode&>(*d.whole), c.frame, address, data, c.fcs);
-}
-
-}  // namespace seed_detail
-
 inline SharedBits encode_seeded(bool& level, std::uint8_t address,
                                 std::span<const std::uint8_t> data) {
   return rewrite_shared_bits([&](wire::LineBits& bits, BurstDecodes& d) {
-    seed_detail::encode_over(bits, d, level, address, data);
-  });
-}
-
-// The same, written over `kept` (a telegram the sender sent before) when no one else holds
-// it any more (shared_bits.hpp, rewrite_kept_bits).
-inline SharedBits encode_seeded_kept(const SharedBits& kept, bool& level, std::uint8_t address,
-                                     std::span<const std::uint8_t> data) {
-  return rewrite_kept_bits(kept, [&](wire::LineBits& bits, BurstDecodes& d) {
-    seed_detail::encode_over(bits, d, level, address, data);
+    const wire::TelegramCoding c =
+        wire::encoder_detail::encode_telegram_inline(bits, level, address, data);
+    level = c.level_after;
+    if (!d.prefixes.empty()) d.prefixes.clear();
+    if (!d.whole) d.whole = d.spare ? std::move(d.spare) : std::make_unique<BurstDecode>();
+    // Every decode is made non-const (run_decoder, seed_decode), so it may be filled again.
+    seed_detail::fill_seed(const_cast<BurstDecode&>(*d.whole), c.frame, address, data, c.fcs);
   });
 }
 

@@ -10,7 +10,6 @@
 
 #include "sercon/chip/lazy_pin.hpp"
 #include "sercon/chip/line.hpp"
-#include "sercon/chip/shared_bits.hpp"
 
 namespace sercon::chip {
 
@@ -46,13 +45,6 @@ class SerialTransmitter final : private LazyPin::Source {
   sim::Time free_at_ = 0;  // end of the last telegram (or release)
   bool level_ = true;      // line level at free_at_ (light = true)
   LazyPin idle_;
-  // The last kKept telegrams' bits, kept (when bits are recycled): the next telegram is
-  // written over the oldest when no one else holds it by then, mostly a telegram like it
-  // (a slave's AT, the master's MST or MDT, of some cycles before), so its bits and decode
-  // need no reshaping (encode_seeded_kept).
-  static constexpr unsigned kKept = 4;
-  SharedBits kept_[kKept];
-  unsigned next_kept_ = 0;
 };
 
 }  // namespace sercon::chip

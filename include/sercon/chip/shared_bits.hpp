@@ -149,8 +149,6 @@ class SharedBits {
   friend SharedBits write_shared_bits(Write&& write);
   template <class Rewrite>
   friend SharedBits rewrite_shared_bits(Rewrite&& rewrite);
-  template <class Rewrite>
-  friend SharedBits rewrite_kept_bits(const SharedBits& kept, Rewrite&& rewrite);
 
   Node* node_ = nullptr;
 };
@@ -180,21 +178,6 @@ SharedBits rewrite_shared_bits(Rewrite&& rewrite) {
   SharedBits shared(SharedBits::recycled_node());
   rewrite(shared.node_->bits, shared.node_->decodes);
   return shared;
-}
-
-// The same over `kept`'s object (a sender's telegram of before) when no one else holds it
-// any more, else over a recycled one: a sender sending the same telegrams again finds
-// their bits and decode in the shape it needs, where a pooled object comes from a
-// telegram of any size. Without recycling: as rewrite_shared_bits.
-template <class Rewrite>
-SharedBits rewrite_kept_bits(const SharedBits& kept, Rewrite&& rewrite) {
-  SharedBits::Node* const n = kept.node_;
-  if (!kRecycleBits || !n || n->count != 1) [[unlikely]] {
-    return rewrite_shared_bits(std::forward<Rewrite>(rewrite));
-  }
-  ++n->count;
-  rewrite(n->bits, n->decodes);
-  return SharedBits(n);
 }
 
 }  // namespace sercon::chip
