@@ -269,6 +269,42 @@ TEST(TimeBase, CycleTimeEventsRunAtTheStep) {
   EXPECT_EQ(ran[1], loaded + (3 + 98 * 25) * t);
 }
 
+// TimeBase::defer_after_restart (a slave's window close at every MST) skips step_ahead()'s
+// tests: right after a cycle start's divider restart it gives the event the time the general
+// path gives, for every step from TCNTST on, MCLKST, MCLKDIV, on whole- and part-picosecond
+// grids, at and between MCLK edges.
+TEST(TimeBase, DeferAfterRestartIsTheGeneralStep) {
+  for (const std::int64_t mhz : {25, 30}) {
+    for (const std::int64_t mclkst : {0, 1, 5}) {
+      for (const std::int64_t divider : {0, 7, 24}) {
+        for (const std::int64_t tcntst : {0, 3, 40}) {
+          TimingBench b(config_mhz(mhz));
+          auto& tb = b.time_base();
+          b.chip.reg_write(kClockDiv, static_cast<std::uint16_t>(mclkst << 8 | divider));
+          b.chip.reg_write(kTcntst, static_cast<std::uint16_t>(tcntst));
+          TimeBase::OwnedEvent owned(tb, nullptr);
+          for (const Time at : {5 * kMicrosecond, 7 * kMicrosecond + 11}) {
+            b.run_to(at);
+            for (const std::int64_t step : {0, 1, 2, 500}) {
+              const std::int64_t cycle_time = tcntst + step;
+              std::optional<Time> general;
+              tb.start_cycle(CycleKind::Master, [&](const CycleStart&) {
+                general = tb.time_of_cycle_time(cycle_time);
+                tb.defer_after_restart(owned, cycle_time, [](void*) {});
+              });
+              ASSERT_TRUE(general.has_value());
+              EXPECT_EQ(owned.when(), *general) << mhz << " " << mclkst << " " << divider << " "
+                                                << tcntst << " " << at << " " << step;
+              EXPECT_TRUE(owned.pending());
+              owned.cancel();
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 // docs/timing.md, "Cycle-time events": a cycle-time event exists exactly for the steps the counter
 // has not made yet. The time base decides "ahead" from the step's edge time alone (not by
 // counting ticks): at every MCLK edge and just before it, around a restart, on a grid

@@ -44,9 +44,14 @@ class CycleWindow {
     closes_ = tscyc_ + jtscyc2_;
     state_ = start.kind == CycleKind::Substitute ? State::Missed : State::Synced;
     // A window programmed to close before the counter's start closes at the first step.
-    // Deferred: mostly the next MST comes first and drops it.
-    time_base_.defer_at_cycle_time(close_event_, std::max(closes_, start.count),
-                                   &CycleWindow::closes);
+    // Deferred: mostly the next MST comes first and drops it. An MST's or a master's start
+    // has just restarted the divider, with the counter at start.count: the step is ahead.
+    const std::int64_t close_at = std::max(closes_, start.count);
+    if (start.kind != CycleKind::Substitute) [[likely]] {
+      time_base_.defer_after_restart(close_event_, close_at, &CycleWindow::closes);
+    } else {
+      time_base_.defer_at_cycle_time(close_event_, close_at, &CycleWindow::closes);
+    }
   }
   void forget() {  // back to Unsynced
     close_event_.cancel();

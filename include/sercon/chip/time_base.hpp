@@ -12,6 +12,7 @@
 // A second, free-running MCLKDIV divider (never restarted by cycle starts) times WDOGN.
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -175,6 +176,19 @@ class TimeBase : public ChipUnit {
     return owned_at_cycle_time(owned, cycle_time, [&](sim::Time when) {
       scheduler_.defer_owned(owned.slot_, when, action);
     });
+  }
+  // defer_at_cycle_time() from a cycle start's `first` after a divider restart (start_cycle,
+  // start_cycle_at), for a `cycle_time` not below the counter (TCNTST), into an `owned` the
+  // start left idle: the step's tick then comes after the restart's edge, itself at or after
+  // now, so it is ahead; neither is tested (asserted in debug builds). Inline: a slave's window
+  // close at every MST.
+  [[gnu::always_inline]] void defer_after_restart(OwnedEvent& owned, std::int64_t cycle_time,
+                                                  sim::Scheduler::Action action) {
+    const sim::Time when = time_of_step(cycle_time);
+    assert(cycle_time >= base_ && step_ahead(cycle_time) == when);
+    scheduler_.defer_idle_owned(owned.slot_, when, action);
+    owned.cycle_time_ = cycle_time;
+    owned.when_ = when;
   }
   // The same, held (Scheduler::hold_owned_lazily): for an event whose action would change
   // nothing (INT_ENDMK raised while latched); the owner calls queue_held() when that may

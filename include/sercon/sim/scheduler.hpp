@@ -119,7 +119,15 @@ class Scheduler {
   // arm_owned(); cancel_owned(), move_owned() and disown() take it as any other.
   // Inline: mostly it goes at the back of the deferred events.
   void defer_owned(OwnedSlot owned, Time when, Action action) {
-    if (when <= now_ || owned_pending(owned) || when < deferred_last_) [[unlikely]]
+    if (when <= now_ || owned_pending(owned)) [[unlikely]]
+      return defer_owned_slowly(owned, when, action);
+    defer_idle_owned(owned, when, action);
+  }
+  // defer_owned() for a caller that knows `when` is after now and the event not pending (as
+  // arm_owned_idle()): neither is tested (asserted in debug builds).
+  [[gnu::always_inline]] void defer_idle_owned(OwnedSlot owned, Time when, Action action) {
+    assert(when > now_ && !owned_pending(owned));
+    if (when < deferred_last_) [[unlikely]]
       return defer_owned_slowly(owned, when, action);
     Slot& slot = slots_[owned];
     const Generation generation = take_order(slot, when);
