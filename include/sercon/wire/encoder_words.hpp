@@ -286,8 +286,9 @@ template <class Full>
   // before the word flips it all when high. `flip` keeps both: kAlternate ^ (0 or all 1s).
   constexpr std::uint64_t kAlternate = 0xAAAAAAAAAAAAAAAAull;
   std::uint64_t flip = initial_level_high ? ~kAlternate : kAlternate;
-  // Always inline: in a flattened caller (the chip's transmitter) GCC made it a call.
-  const auto full = [&at, &flip] [[gnu::always_inline]] (std::uint64_t w) {
+  // Always inline: in a flattened caller (the chip's transmitter) GCC made it a call. GNU
+  // spelling: [[gnu::always_inline]] before the parameters is C++23, which clang refuses.
+  const auto full = [&at, &flip ](std::uint64_t w) __attribute__((always_inline)) {
     const std::uint64_t levels = changes_so_far(w) ^ flip;
     LineBits::store_word(at, levels);
     at += 8;
