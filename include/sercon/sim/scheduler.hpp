@@ -99,10 +99,9 @@ class Scheduler {
   // cancelled): neither is tested (asserted in debug builds). Inline: a list walk arms one
   // at every transmit header.
   [[gnu::always_inline]] void arm_owned_idle(OwnedSlot owned, Time when, Action action) {
-    assert(when > now_ && !owned_pending(owned));
-    Slot& slot = slots_[owned];
-    insert(when, owned, take_order(slot, when));
-    slot.action = action;
+    assert(when > now_);
+    slots_[owned].action = action;  // before: nothing is refused (arm_owned() sets it after)
+    arm_owned_idle(owned, when);
   }
   // arm_owned(owned, when) for a caller that knows `when` is not before now and the event
   // not pending (a receiver's report, armed only while none is planned): neither is tested
