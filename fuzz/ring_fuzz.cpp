@@ -400,6 +400,34 @@ std::vector<Op> fuzzed_ops(FuzzedDataProvider& in, const Setup& s) {
   return ops;
 }
 
+// All of an input, enough to write it again as a test (RING_FUZZ_TRACE).
+void print_input(const Setup& s, const std::vector<Op>& ops) {
+  std::fprintf(stderr, "%s of %zu, bring-up %d, rate 0x%04x, tscyc %u, lazy %d, warm-up %d\n",
+               s.bus ? "bus" : "ring", s.nodes.size(), s.bring_up, s.rate, s.tscyc,
+               s.lazy_initially, s.warm_up_cycles);
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    const ChipConfig& c = s.nodes[i].config;
+    std::fprintf(stderr, "node %zu: %s, MCLK %lld Hz, SBAUD %d, SBAUD16 %d, TM0 %d, TM1 %d", i,
+                 c.variant == Variant::Sercon410B ? "SERCON410B" : "SERCON816",
+                 static_cast<long long>(c.mclk_hz), c.sbaud, c.sbaud16, c.tm0, c.tm1);
+    if (!s.bus) std::fprintf(stderr, ", fibre %g m", s.fibre_lengths_m[i]);
+    std::fprintf(stderr, "\n");
+  }
+  if (s.bus) std::fprintf(stderr, "bus delay %lld ps\n", static_cast<long long>(s.bus_delay));
+  for (std::size_t i = 0; i < ops.size(); ++i) {
+    const Op& op = ops[i];
+    std::fprintf(stderr,
+                 "op %zu: kind %d node %zu address 0x%x value 0x%x time %lld p %g seed %llu", i,
+                 static_cast<int>(op.kind), op.node, op.address, op.value,
+                 static_cast<long long>(op.time), op.p, static_cast<unsigned long long>(op.seed));
+    if (!op.words.empty()) {
+      std::fprintf(stderr, " words");
+      for (std::uint16_t w : op.words) std::fprintf(stderr, " 0x%04x", w);
+    }
+    std::fprintf(stderr, "\n");
+  }
+}
+
 // --- observations -------------------------------------------------------------------------
 
 // One observed stream: a running hash, and the text when RING_FUZZ_TRACE is set.
@@ -1068,6 +1096,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   FuzzedDataProvider in(data, size);
   const Setup setup = fuzzed_setup(in);
   const std::vector<Op> ops = fuzzed_ops(in, setup);
+  if (trace_on()) print_input(setup, ops);
   const std::uint64_t hard_limit = 10 * kEventBudget + kSamePicosecondLimit;
 
   Outcome a;
