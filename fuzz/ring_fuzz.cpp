@@ -16,7 +16,7 @@
 //  1. Nothing the host does through registers and DPRAM, nor the ring's public operations,
 //     makes Scheduler::run_until / step throw or crash. The one documented exception is
 //     allowed: std::runtime_error "... circle a ring where every node repeats ..." from a
-//     receiver holding 4096 changes announced ahead (docs/serial-and-ring.md, "Per telegram,
+//     receiver holding 1024 changes announced ahead (docs/serial-and-ring.md, "Per telegram,
 //     not per bit", depth guard), only in a ring where every node has had REPON = 1.
 //  2. Unused register bits read 0 (datasheet 4.1); VERSION per variant (delta spec
 //     2.11.1.1); 0x2B..0x3F read 0 (docs/registers.md).
