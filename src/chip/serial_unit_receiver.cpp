@@ -26,8 +26,8 @@ namespace {
 // ones; 605 in a test's loop that ends). A ring where every node repeats, the master too,
 // re-announces what circles it each time an own telegram is inserted, and that can grow
 // without end; past this many an error names it instead of a hang. The plans walk the
-// timeline, so the way there costs about the square of this (docs/serial-and-ring.md,
-// "Depth guard").
+// timeline at each change announced, so the way there costs about the square of this
+// (docs/serial-and-ring.md, "Depth guard").
 constexpr std::size_t kMaxTimeline = 1024;
 }  // namespace
 
@@ -350,7 +350,6 @@ void SerialReceiver::reset() {
   cancel_report();
   scheduler_.cancel(monitor_event_);
   monitor_event_ = {};
-  monitor_quiet_to_ = 0;
   for (const Deferred& d : deferred_) scheduler_.cancel(d.event);
   deferred_.clear();
   for (Entry& e : timeline_) {
@@ -369,7 +368,6 @@ void SerialReceiver::release() {
   const std::size_t current = in_force(now);
   monitor_seen_ = timeline_[current].serial;
   monitor_last_ = timeline_[current].segment;
-  monitor_quiet_to_ = 0;
   for (std::size_t i = current + 1; i < timeline_.size(); ++i) take(timeline_[i]);
   plan_reports();
   plan_monitor();
@@ -388,7 +386,6 @@ void SerialReceiver::refresh_rate() {
   if (in.decode && in.segment.period != unit_.bit_period()) cut(in, now);
   for (std::size_t i = current + 1; i < timeline_.size(); ++i) take(timeline_[i]);
   plan_reports();
-  monitor_quiet_to_ = 0;  // good() asks the rate
   plan_monitor();
   recactn_.replan();
 }
@@ -695,56 +692,27 @@ void SerialReceiver::plan_monitor() {
   monitor_event_ = {};
   if (!unit_.running()) return;
   const sim::Time now = scheduler_.now();
-  const Entry* const first = timeline_.begin();
-  const Entry* const last = timeline_.end();
-  // The walk starts after the entries the monitor has taken and those an earlier walk found
-  // quiet (monitor_quiet_to_), found by their serials, which rise along the timeline: in a
-  // ring where every node repeats, thousands of changes are announced ahead before the depth
-  // guard stops them, and a walk over all of them at each took seconds (minutes under the
-  // fuzzer's sanitizers; docs/fuzzing.md).
-  const Entry* e =
-      std::partition_point(first, last, [&](const Entry& x) { return x.serial <= monitor_seen_; });
-  const Entry* const known =
-      std::partition_point(e, last, [&](const Entry& x) { return x.serial <= monitor_quiet_to_; });
   // Compared with what the monitor last took, not with the entry before: a change at the
   // very instant of the one in force replaces it in the timeline.
-  const RxdSegment* before = &monitor_last_;
-  if (known != e) {
-    // Quiet: the monitor takes those now past without a word (checked in debug builds).
-    assert(good(monitor_last_) &&
-           std::all_of(e, known, [&](const Entry& x) { return good(x.segment); }));
-    const Entry* const past =
-        std::partition_point(e, known, [&](const Entry& x) { return x.segment.since <= now; });
-    if (past != e) {
-      monitor_seen_ = past[-1].serial;
-      monitor_last_ = past[-1].segment;
+  RxdSegment before = monitor_last_;
+  for (const Entry& e : timeline_) {
+    if (e.serial <= monitor_seen_) continue;
+    const bool quiet = good(before) && good(e.segment);
+    if (e.segment.since > now) {
+      if (quiet) {
+        before = e.segment;
+        continue;
+      }
+      monitor_event_ = scheduler_.at(
+          e.segment.since, [](void* self) { static_cast<SerialReceiver*>(self)->fire_monitor(); },
+          this);
+      return;
     }
-    before = &known[-1].segment;
-    e = known;
+    monitor_seen_ = e.serial;
+    monitor_last_ = e.segment;
+    if (!quiet) unit_.monitor().input_changed(before, e.segment);
+    before = e.segment;
   }
-  for (; e != last; ++e) {
-    const bool quiet = good(*before) && good(e->segment);
-    if (e->segment.since > now) {
-      if (!quiet) return arm_monitor(e->segment.since);
-      monitor_quiet_to_ = e->serial;
-      before = &e->segment;
-      continue;
-    }
-    monitor_seen_ = e->serial;
-    if (quiet) {
-      monitor_last_ = e->segment;
-    } else {
-      const RxdSegment was = *before;  // it may be monitor_last_
-      monitor_last_ = e->segment;
-      unit_.monitor().input_changed(was, e->segment);
-    }
-    before = &e->segment;
-  }
-}
-
-void SerialReceiver::arm_monitor(sim::Time at) {
-  monitor_event_ = scheduler_.at(
-      at, [](void* self) { static_cast<SerialReceiver*>(self)->fire_monitor(); }, this);
 }
 
 void SerialReceiver::fire_monitor() {

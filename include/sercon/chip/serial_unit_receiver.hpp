@@ -433,7 +433,6 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   [[gnu::always_inline]] inline bool done_after_detection(const Report& fired);
   inline bool start_report_past(const Entry& e, const FrameState& st, sim::Time now) const;
   void plan_monitor();
-  void arm_monitor(sim::Time at);
   void fire_monitor();
   inline bool good(const RxdSegment& s) const;  // edges at the receiver's rate
 
@@ -521,13 +520,7 @@ class SerialReceiver final : public LineListener, private LazyPin::Source {
   std::uint64_t lazy_hops_taken_ = 0;
   std::uint64_t monitor_seen_ = 0;  // serial of the last entry the monitor has taken
   RxdSegment monitor_last_;         // that entry's segment (it may have been superseded since)
-  // The entries after monitor_seen_ up to this serial were quiet (good after good, from
-  // monitor_last_ on) and ahead when plan_monitor() last walked them: the next walk need not
-  // ask them again. Entries keep their serial and segment (supersede() drops whole entries
-  // from the back, cut() leaves the segment; take_in_front() gives a new serial), so only a
-  // new rate or a new monitor_last_ from outside the walk (release()) makes it stale.
-  std::uint64_t monitor_quiet_to_ = 0;
-  Report report_{};  // the planned report: read only while report_armed_
+  Report report_{};                 // the planned report: read only while report_armed_
   // The entry whose report's handler runs: prune() keeps it (and so its bits, which the
   // frame handed to the handler lives in) until the handler returns.
   static constexpr std::uint64_t kNoSerial = UINT64_MAX;
