@@ -22,8 +22,8 @@ using receiver_detail::kNever;
 
 namespace {
 // A receiver holds what is in force and what is announced for later: a handful of telegrams
-// in a real ring (at most 39 at the master of 254 slaves with 250 m fibres, 256 with 4 km
-// ones; 605 in a test's loop that ends). A ring where every node repeats, the master too,
+// in a real ring (at most 39 in a ring of 254 slaves with 250 m fibres, 256 with 4 km ones;
+// 605 in a test's loop that ends). A ring where every node repeats, the master too,
 // re-announces what circles it each time an own telegram is inserted, and that can grow
 // without end; past this many an error names it instead of a hang. The plans walk the
 // timeline at each change announced, so the way there costs about the square of this
