@@ -400,6 +400,18 @@ std::vector<Op> fuzzed_ops(FuzzedDataProvider& in, const Setup& s) {
   return ops;
 }
 
+// One operation, every field (RING_FUZZ_TRACE): in the input's dump and as it runs.
+void print_op(std::size_t i, const Op& op) {
+  std::fprintf(stderr, "op %zu: kind %d node %zu address 0x%x value 0x%x time %lld p %g seed %llu",
+               i, static_cast<int>(op.kind), op.node, op.address, op.value,
+               static_cast<long long>(op.time), op.p, static_cast<unsigned long long>(op.seed));
+  if (!op.words.empty()) {
+    std::fprintf(stderr, " words");
+    for (std::uint16_t w : op.words) std::fprintf(stderr, " 0x%04x", w);
+  }
+  std::fprintf(stderr, "\n");
+}
+
 // All of an input, enough to write it again as a test (RING_FUZZ_TRACE).
 void print_input(const Setup& s, const std::vector<Op>& ops) {
   std::fprintf(stderr, "%s of %zu, bring-up %d, rate 0x%04x, tscyc %u, lazy %d, warm-up %d\n",
@@ -414,18 +426,7 @@ void print_input(const Setup& s, const std::vector<Op>& ops) {
     std::fprintf(stderr, "\n");
   }
   if (s.bus) std::fprintf(stderr, "bus delay %lld ps\n", static_cast<long long>(s.bus_delay));
-  for (std::size_t i = 0; i < ops.size(); ++i) {
-    const Op& op = ops[i];
-    std::fprintf(stderr,
-                 "op %zu: kind %d node %zu address 0x%x value 0x%x time %lld p %g seed %llu", i,
-                 static_cast<int>(op.kind), op.node, op.address, op.value,
-                 static_cast<long long>(op.time), op.p, static_cast<unsigned long long>(op.seed));
-    if (!op.words.empty()) {
-      std::fprintf(stderr, " words");
-      for (std::uint16_t w : op.words) std::fprintf(stderr, " 0x%04x", w);
-    }
-    std::fprintf(stderr, "\n");
-  }
+  for (std::size_t i = 0; i < ops.size(); ++i) print_op(i, ops[i]);
 }
 
 // --- observations -------------------------------------------------------------------------
@@ -610,12 +611,7 @@ class Sim {
           step_to(*stop_time, event_limit, false, out);
           break;
         }
-        if (trace_on()) {
-          std::fprintf(stderr,
-                       "op %zu kind %d node %zu address 0x%x value 0x%x time %lld p %g words %zu\n",
-                       i, static_cast<int>(ops[i].kind), ops[i].node, ops[i].address, ops[i].value,
-                       static_cast<long long>(ops[i].time), ops[i].p, ops[i].words.size());
-        }
+        if (trace_on()) print_op(i, ops[i]);
         if (!one(ops[i], event_limit, budgeted, out)) break;
         if (trace_on()) {
           std::string sermode;
